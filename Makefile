@@ -1,0 +1,37 @@
+# Two commands set everything up on a fresh Debian 12 machine (see README.md):
+#   make run    installs missing Debian packages, builds Release into build/, runs the default scene
+#   make test   the same set-up, then every test through ctest (non-zero exit on any failure)
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+SCENE ?= scenes/default.xml
+DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 libvtk9-dev
+
+.PHONY: deps configure build run test bench install clean
+
+deps:
+	@missing=""; for p in $(DEBIAN_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing missing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
+	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+configure: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+run: build
+	$(BUILD_DIR)/bin/fascia-run $(SCENE)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD_DIR)/bin/fascia-bench --suite
+
+clean:
+	rm -rf $(BUILD_DIR)

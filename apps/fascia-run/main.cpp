@@ -1,0 +1,234 @@
+// fascia-run: runs a scene headless. See `fascia-run --help`.
+#include "fascia/plugin/PluginManager.h"
+#include "fascia/plugin/Registry.h"
+#include "fascia/sim/Simulation.h"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+using namespace fascia::core;
+
+namespace {
+
+const char* kHelp = R"(fascia-run: run a Fascia scene headless
+
+usage:
+  fascia-run SCENE.xml [--steps N | --time T] [--dt DT] [--threads N] [--output DIR] [--quiet] [--timers]
+  fascia-run --list
+  fascia-run --describe COMPONENT
+  fascia-run --help
+
+options:
+  --steps N        run N steps
+  --time T         run until T seconds of simulated time (ceil(T/dt) steps)
+                   (default: the root node's endTime, or 100 steps when it has none)
+  --dt DT          time step in seconds, overriding the scene's dt
+  --threads N      OpenMP threads (default: all cores); results do not depend on it
+  --output DIR     folder exporters and monitors write into (created; default: .)
+  --quiet          no progress bar, no warnings summary
+  --timers         print the time spent in each component at the end
+  --list           print every registered component with its plugin and a description
+  --describe NAME  print the parameters of a component (type, default, unit, range, help)
+
+plugins: the built-in plugin folder is loaded automatically, then every folder of
+FASCIA_PLUGIN_PATH (colon separated); a scene loads more with <RequiredPlugin name="..."/>.
+
+output: a progress bar on a terminal (none when piped or with --quiet), then one summary line:
+  fascia-run: N steps, T s simulated, W s wall, M ms/step, real-time factor R
+
+exit codes:
+  0  success
+  2  invalid scene or input (the located error, file:line, on stderr)
+  3  the simulation failed while running (NaN or instability: step and component named)
+  1  anything else (bad command line, internal error)
+)";
+
+volatile std::sig_atomic_t g_interrupted = 0;
+void onSignal(int) { g_interrupted = 1; }
+
+[[noreturn]] void usage(const std::string& msg) {
+    std::cerr << "fascia-run: " << msg << "\n(see fascia-run --help)\n";
+    std::exit(1);
+}
+
+double parseNumber(const std::string& opt, const char* v) {
+    if (!v) usage(opt + " needs a value");
+    char* end = nullptr;
+    double d = std::strtod(v, &end);
+    if (!end || *end || !std::isfinite(d) || d <= 0) usage(opt + " needs a positive number, not '" + v + "'");
+    return d;
+}
+
+int listComponents() {
+    PluginManager::instance().loadDefaultPlugins();
+    const auto& reg = Registry::instance();
+    size_t w = 0;
+    for (auto& [n, e] : reg.entries()) w = std::max(w, n.size());
+    for (auto& [n, e] : reg.entries()) {
+        std::string plugin = e.plugin.empty() ? "core" : e.plugin;
+        std::printf("%-*s  %-22s %s\n", int(w), n.c_str(), plugin.c_str(), e.description.c_str());
+    }
+    return 0;
+}
+
+int describe(const std::string& name) {
+    PluginManager::instance().loadDefaultPlugins();
+    const auto& reg = Registry::instance();
+    auto* e = reg.find(name);
+    if (!e) {
+        std::cerr << "fascia-run: no component '" << name << "'";
+        auto close = closestMatches(name, reg.names());
+        if (!close.empty()) std::cerr << "; did you mean '" << close[0] << "'?";
+        std::cerr << "\n";
+        return 2;
+    }
+    auto c = reg.create(name);
+    std::cout << name << " (plugin " << (e->plugin.empty() ? "core" : e->plugin) << "): " << e->description << "\n\n";
+    std::cout << "parameters:\n";
+    for (BaseParam* p : c->params()) {
+        const auto& s = p->spec();
+        std::cout << "  " << p->name() << "  [" << p->typeName();
+        if (!s.unitText.empty()) std::cout << ", " << s.unitText;
+        std::cout << "]";
+        if (s.isRequired) std::cout << " required";
+        else if (s.isOutput) std::cout << " output (link to it with \"@" << "name." << p->name() << "\")";
+        else {
+            auto d = p->defaultText();
+            if (d.size() > 40) d = d.substr(0, 37) + "...";
+            std::cout << " default: " << (d.empty() ? "(none)" : d);
+        }
+        auto r = s.rangeText();
+        if (!r.empty()) std::cout << "  range: " << r;
+        std::cout << "\n";
+        if (!s.helpText.empty()) std::cout << "      " << s.helpText << "\n";
+    }
+    return 0;
+}
+
+void progress(long done, long total, double wall) {
+    const int width = 40;
+    const double f = total > 0 ? double(done) / double(total) : 1.0;
+    const int filled = int(f * width);
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%%  step %ld/%ld  %.1f s", filled,
+                 "########################################", width - filled, "", int(f * 100), done, total, wall);
+    std::fflush(stderr);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string scene, output, describeName;
+    long steps = -1;
+    double endTime = -1, dt = 0;
+    int threads = 0;
+    bool quiet = false, timers = false, list = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+        if (a == "--help" || a == "-h") {
+            std::cout << kHelp;
+            return 0;
+        } else if (a == "--steps") {
+            const char* v = next();
+            if (!v) usage("--steps needs a value");
+            char* end = nullptr;
+            steps = std::strtol(v, &end, 10);
+            if (*end || steps < 0) usage(std::string("--steps needs a non-negative integer, not '") + v + "'");
+        } else if (a == "--time") {
+            endTime = parseNumber(a, next());
+        } else if (a == "--dt") {
+            dt = parseNumber(a, next());
+        } else if (a == "--threads") {
+            threads = int(parseNumber(a, next()));
+        } else if (a == "--output") {
+            const char* v = next();
+            if (!v) usage("--output needs a folder");
+            output = v;
+        } else if (a == "--quiet" || a == "-q") {
+            quiet = true;
+        } else if (a == "--timers") {
+            timers = true;
+        } else if (a == "--list") {
+            list = true;
+        } else if (a == "--describe") {
+            const char* v = next();
+            if (!v) usage("--describe needs a component name");
+            describeName = v;
+        } else if (!a.empty() && a[0] == '-') {
+            usage("unknown option '" + a + "'");
+        } else if (scene.empty()) {
+            scene = a;
+        } else {
+            usage("one scene at a time ('" + scene + "' and '" + a + "')");
+        }
+    }
+    if (steps >= 0 && endTime > 0) usage("give --steps or --time, not both");
+    try {
+        if (list) return listComponents();
+        if (!describeName.empty()) return describe(describeName);
+        if (scene.empty()) usage("no scene given");
+        if (threads > 0) omp_set_num_threads(threads);
+
+        LoadOptions opts;
+        opts.outputDir = output;
+        opts.dt = dt;
+        auto sim = Simulation::fromFile(scene, opts);
+        if (!(sim->dt() > 0))
+            throwInputError({scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
+        if (steps < 0) {
+            double T = endTime > 0 ? endTime : sim->root().endTime.get();
+            steps = T > 0 ? long(std::ceil(T / sim->dt() - 1e-9)) : 100;
+        }
+        std::signal(SIGINT, onSignal);
+        std::signal(SIGTERM, onSignal);
+        const bool bar = !quiet && isatty(STDERR_FILENO);
+        const auto start = std::chrono::steady_clock::now();
+        auto lastDraw = start;
+        long done = 0;
+        for (; done < steps && !g_interrupted; ++done) {
+            sim->step();
+            if (bar) {
+                auto now = std::chrono::steady_clock::now();
+                if (now - lastDraw > std::chrono::milliseconds(100) || done + 1 == steps) {
+                    progress(done + 1, steps, std::chrono::duration<double>(now - start).count());
+                    lastDraw = now;
+                }
+            }
+        }
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (bar) std::fputc('\n', stderr);
+        sim->finish();
+        const double simulated = sim->time();
+        std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", done,
+                    simulated, wall, done ? 1e3 * wall / double(done) : 0.0, wall > 0 ? simulated / wall : 0.0);
+        if (timers) {
+            std::printf("%-40s %-22s %12s %10s\n", "component", "type", "seconds", "calls");
+            for (auto& r : sim->timers())
+                if (r.calls) std::printf("%-40s %-22s %12.6f %10ld\n", r.path.c_str(), r.type.c_str(), r.seconds, r.calls);
+        }
+        if (g_interrupted) {
+            std::cerr << "fascia-run: interrupted after " << done << " steps (files written so far are complete)\n";
+            return 130;
+        }
+        return 0;
+    } catch (const Error& e) {
+        std::cout.flush();
+        std::cerr << std::string(e.what()) + "\n";
+        switch (e.kind()) {
+        case ErrorKind::Input: return 2;
+        case ErrorKind::Simulation: return 3;
+        default: return 1;
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "fascia-run: internal error: " << e.what() << "\n";
+        return 1;
+    }
+}

@@ -1,0 +1,36 @@
+# Install rules and the exported CMake package, so an out-of-tree plugin needs only
+#   find_package(Fascia REQUIRED)
+#   fascia_add_plugin(NAME myplugin SOURCES MyForceField.cpp)
+include(CMakePackageConfigHelpers)
+set(FASCIA_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Fascia)
+
+install(TARGETS fascia_core fascia_flags EXPORT FasciaTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+
+# plugins: all into the plugin folder; those with public headers (materials ...) are exported too
+get_property(_fascia_plugins GLOBAL PROPERTY FASCIA_INTREE_PLUGINS)
+get_property(_fascia_exported GLOBAL PROPERTY FASCIA_EXPORTED_PLUGINS)
+foreach(p ${_fascia_plugins})
+  if(p IN_LIST _fascia_exported)
+    install(TARGETS ${p} EXPORT FasciaTargets LIBRARY DESTINATION ${FASCIA_PLUGIN_SUBDIR})
+  else()
+    install(TARGETS ${p} LIBRARY DESTINATION ${FASCIA_PLUGIN_SUBDIR})
+  endif()
+endforeach()
+get_property(_fascia_public_includes GLOBAL PROPERTY FASCIA_PUBLIC_INCLUDE_DIRS)
+foreach(d ${_fascia_public_includes})
+  install(DIRECTORY ${d}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endforeach()
+
+install(EXPORT FasciaTargets NAMESPACE Fascia:: DESTINATION ${FASCIA_CMAKE_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/FasciaConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/FasciaConfig.cmake INSTALL_DESTINATION ${FASCIA_CMAKE_DIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/FasciaConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/FasciaConfig.cmake ${PROJECT_BINARY_DIR}/FasciaConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/FasciaPluginHelpers.cmake
+        DESTINATION ${FASCIA_CMAKE_DIR})

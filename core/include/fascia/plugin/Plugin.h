@@ -1,0 +1,31 @@
+#pragma once
+/// The one entry point a plugin exports. Use FASCIA_PLUGIN(...) in exactly one .cpp of a plugin.
+#include "fascia/plugin/Registry.h"
+
+/// Bumped whenever a change to the core breaks binary compatibility with built plugins.
+#define FASCIA_ABI_VERSION 1
+
+namespace fascia::core {
+
+/// What fascia_plugin_info() returns. abiVersion stays the first member forever, so that a
+/// plugin of any ABI can be identified and refused without reading the rest.
+struct PluginInfo {
+    int abiVersion;
+    const char* id;           ///< dotted id, e.g. "fascia.heml"
+    const char* version;      ///< plugin version, e.g. "0.1.0"
+    const char* description;  ///< one line
+    void (*registerComponents)(Registry&);
+};
+
+} // namespace fascia::core
+
+#define FASCIA_PLUGIN_ENTRY_NAME "fascia_plugin_info"
+
+/// FASCIA_PLUGIN("my.plugin", "1.0", "what it adds", registerFunction)
+#define FASCIA_PLUGIN(ID, VERSION, DESCRIPTION, REGISTER_FN)                                       \
+    extern "C" __attribute__((visibility("default"))) const ::fascia::core::PluginInfo*          \
+    fascia_plugin_info() {                                                                        \
+        static const ::fascia::core::PluginInfo info{FASCIA_ABI_VERSION, ID, VERSION, DESCRIPTION, \
+                                                     REGISTER_FN};                                \
+        return &info;                                                                             \
+    }

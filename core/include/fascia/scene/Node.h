@@ -1,0 +1,101 @@
+#pragma once
+/// The scene graph: nodes with children and components.
+#include "fascia/base/Component.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fascia::core {
+
+/// Per-run settings shared by the components of one scene (held by its root node).
+struct SceneContext {
+    std::string sceneFile;     ///< file the scene came from ("" when built in code)
+    std::string outputDir = "."; ///< folder observers write into
+    double time = 0.0, dt = 0.0;
+    long step = 0;
+};
+
+class Node : public Base {
+public:
+    Node();
+    explicit Node(const std::string& name);
+    ~Node() override;
+
+    Node* parent() const { return m_parent; }
+    Node* root();
+    std::string path() const override;
+
+    Node& addChild(std::unique_ptr<Node> child);
+    Node& addChild(const std::string& name);
+    Component& addComponent(std::unique_ptr<Component> c);
+    /// Creates a component in code: `auto& mo = node.add<MechanicalObject>("mo");`
+    template <class T, class... A> T& add(const std::string& name, A&&... args) {
+        auto c = std::make_unique<T>(std::forward<A>(args)...);
+        c->setName(name);
+        return static_cast<T&>(addComponent(std::move(c)));
+    }
+
+    const std::vector<std::unique_ptr<Node>>& children() const { return m_children; }
+    const std::vector<std::unique_ptr<Component>>& components() const { return m_components; }
+
+    Node* child(const std::string& name) const;
+    Component* component(const std::string& name) const;
+
+    /// First component of type T in this node.
+    template <class T> T* findLocal() const {
+        for (auto& c : m_components)
+            if (auto* t = dynamic_cast<T*>(c.get())) return t;
+        return nullptr;
+    }
+    /// All components of type T in this node.
+    template <class T> std::vector<T*> findAllLocal() const {
+        std::vector<T*> out;
+        for (auto& c : m_components)
+            if (auto* t = dynamic_cast<T*>(c.get())) out.push_back(t);
+        return out;
+    }
+    /// First component of type T in this node or, failing that, in its ancestors (the context).
+    template <class T> T* findInContext() const {
+        for (const Node* n = this; n; n = n->m_parent)
+            if (auto* t = n->findLocal<T>()) return t;
+        return nullptr;
+    }
+    /// All components of type T in this subtree, depth first, in declaration order.
+    template <class T> std::vector<T*> findAllInSubtree() const {
+        std::vector<T*> out;
+        visit([&](const Node& n) { for (auto* t : n.findAllLocal<T>()) out.push_back(t); });
+        return out;
+    }
+    /// A component by name anywhere in the tree (first match, depth first).
+    Component* findByName(const std::string& name) const;
+    /// Resolves a path relative to this node: "mo", "../loader", "child/mo", "/root/child/mo".
+    /// A bare name not in this node is looked up in the ancestors. Returns null when nothing matches.
+    Component* resolveComponent(const std::string& path) const;
+    Node* resolveNode(const std::string& path) const;
+
+    template <class F> void visit(F&& f) const {
+        f(*this);
+        for (auto& c : m_children) c->visit(f);
+    }
+
+    // parameters of a node
+    Param<TimeStep> dt{this, ParamSpec("dt").unit("s").help("time step, or \"auto\" for the smallest stable step of the force fields times dtSafety (root node)")};
+    Param<double> dtSafety{this, ParamSpec("dtSafety").above(0).max(1).help("safety factor applied to the critical time step when dt=\"auto\""), 0.5};
+    Param<Vec3> gravity{this, ParamSpec("gravity").unit("m/s^2").help("gravity acceleration, inherited by child nodes that do not set it"), Vec3::Zero()};
+    Param<double> endTime{this, ParamSpec("endTime").unit("s").min(0).help("simulated time fascia-run runs to when neither --steps nor --time is given (0: 100 steps)"), 0.0};
+
+    /// The run's shared context (on the root node).
+    SceneContext& context();
+
+    /// Gravity of the nearest node (this or an ancestor) that sets it.
+    Vec3 contextGravity() const;
+
+private:
+    Node* m_parent = nullptr;
+    std::unique_ptr<SceneContext> m_context;
+    std::vector<std::unique_ptr<Node>> m_children;
+    std::vector<std::unique_ptr<Component>> m_components;
+};
+
+} // namespace fascia::core

@@ -1,0 +1,129 @@
+#pragma once
+/// The roles a component plays in the simulation loop. Plugins derive from these; the core knows
+/// nothing of any physics beyond them.
+#include "fascia/base/Component.h"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace fascia::core {
+
+/// A mesh source (MeshLoader, GridMesh ...): states, masses and force fields in its context
+/// take their points and elements from it when not linked explicitly.
+class BaseTopology : public Component {
+public:
+    virtual const MeshData& meshData() const = 0;
+};
+
+/// Node data of one deformable body: positions, rest positions, velocities, forces, reactions.
+/// Storage lives here so the loop reads it without virtual calls.
+class BaseMechanicalState : public Component {
+public:
+    size_t size() const { return m_x.size(); }
+    Positions& x() { return m_x; }               ///< current positions (m)
+    Positions& v() { return m_v; }               ///< velocities (m/s)
+    Positions& f() { return m_f; }               ///< accumulated forces (N)
+    Positions& x0() { return m_x0; }             ///< rest positions (m)
+    Positions& reaction() { return m_reaction; } ///< reaction forces on constrained nodes (N)
+    const Positions& x() const { return m_x; }
+    const Positions& v() const { return m_v; }
+    const Positions& f() const { return m_f; }
+    const Positions& x0() const { return m_x0; }
+    const Positions& reaction() const { return m_reaction; }
+    /// Resizes every array to n nodes (positions copied from rest, velocities and forces zero).
+    void resize(size_t n);
+
+protected:
+    Positions m_x, m_v, m_f, m_x0, m_reaction;
+};
+
+/// A per-element field a force field offers to exporters and monitors.
+struct CellField {
+    std::string name;            ///< "J", "vonMises", "S" ...
+    int components = 1;          ///< 1 scalar, 6 symmetric tensor (xx yy zz xy yz xz), 9 tensor
+    std::string unit;
+    std::vector<double> values;  ///< components * elements
+};
+
+/// Nodal masses (kg) for the state in its context.
+class BaseMass : public Component {
+public:
+    const std::vector<double>& nodalMasses() const { return m_masses; }
+    /// Mass density (kg/m^3) where the mass comes from one, else NaN (force fields use it for wave speeds).
+    virtual double density() const { return std::numeric_limits<double>::quiet_NaN(); }
+protected:
+    std::vector<double> m_masses;
+};
+
+/// Adds forces to the state in its context (internal elastic forces, loads).
+class BaseForceField : public Component {
+public:
+    /// f += forces at the state's current positions and velocities at time t.
+    virtual void addForce(BaseMechanicalState& state, Positions& f, double t) = 0;
+    /// Potential (strain) energy at the current positions, J; NaN when not offered.
+    virtual double potentialEnergy(const BaseMechanicalState& state) const {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    /// Largest stable explicit time step (s); infinity when it imposes none.
+    virtual double stableTimeStep(const BaseMechanicalState& state) const {
+        return std::numeric_limits<double>::infinity();
+    }
+    /// Per-element data for exporters (J, stresses ...), computed at the current state.
+    virtual void cellData(const BaseMechanicalState& state, std::vector<CellField>& out) const {}
+    /// Number of elements cellData refers to.
+    virtual size_t elementCount() const { return 0; }
+    /// True for the element force fields whose elements exporters write as cells.
+    virtual const Tetrahedra* tetrahedra() const { return nullptr; }
+    virtual const Hexahedra* hexahedra() const { return nullptr; }
+};
+
+/// Boundary conditions on the state in its context.
+class BaseConstraint : public Component {
+public:
+    /// Imposes positions at time t (prescribed motion); fixed nodes keep their rest positions.
+    virtual void projectPositions(BaseMechanicalState& s, double t) {}
+    /// Imposes velocities at time t.
+    virtual void projectVelocities(BaseMechanicalState& s, double t) {}
+    /// Zeroes constrained force components and stores the reaction (minus the removed force).
+    virtual void projectForces(BaseMechanicalState& s) {}
+    /// Nodes this constraint acts on (for reaction-force monitors).
+    virtual const IndexList& constrainedNodes() const = 0;
+};
+
+struct MechanicalGroup;
+
+/// Advances the states of its subtree by one step.
+class BaseIntegrator : public Component {
+public:
+    virtual void step(MechanicalGroup& group, double t, double dt) = 0;
+};
+
+/// Reads the scene after each step (exporters, monitors).
+class BaseObserver : public Component {
+public:
+    /// Called once after init with the initial state, then after every step.
+    virtual void observe(double t, long step) = 0;
+};
+
+/// One state with everything acting on it, as assembled by the simulation for its integrator.
+struct MechanicalGroup {
+    BaseIntegrator* integrator = nullptr;
+    BaseMechanicalState* state = nullptr;
+    std::vector<BaseForceField*> forceFields;
+    std::vector<BaseMass*> masses;
+    std::vector<BaseConstraint*> constraints;
+    Vec3 gravity = Vec3::Zero();
+    std::vector<double> mass;      ///< summed nodal masses
+    std::vector<double> invMass;   ///< 1/mass (0 where the mass is 0)
+    long stepIndex = 0;            ///< the step being computed (for messages)
+
+    /// f = sum of force fields + gravity, then constraints project it (reactions recorded).
+    void computeForces(double t);
+    /// Applies the constraints' positions and velocities at time t.
+    void projectState(double t);
+    /// Throws a simulation error naming the step and the component when x, v or f holds NaN/inf.
+    void checkFinite(double t);
+};
+
+} // namespace fascia::core

@@ -1,0 +1,86 @@
+#pragma once
+/// The embedding API: load a scene, step it, read and write a state between steps.
+///
+/// ```
+/// auto sim = fascia::core::Simulation::fromFile("scenes/heml/abdomen.xml");
+/// auto& organ = sim->state("organ");          // a MechanicalObject by name or path
+/// for (int i = 0; i < 500; ++i) {             // a haptic loop
+///     organ.x()[tool] = devicePosition;       // write positions between steps
+///     sim->step();
+///     feedback = organ.reaction()[tool];      // read forces
+/// }
+/// ```
+#include "fascia/scene/Node.h"
+#include "fascia/sim/Mechanics.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fascia::core {
+
+struct TimerRow {
+    std::string path, type;
+    double seconds;
+    long calls;
+};
+
+/// Settings applied before init (they change what init does).
+struct LoadOptions {
+    std::string outputDir;  ///< folder observers write into ("" = current directory)
+    double dt = 0;          ///< overrides the root node's dt when > 0
+};
+
+class Simulation {
+public:
+    /// Builds and initialises the scene of a file; input errors are located fascia::core::Error.
+    static std::unique_ptr<Simulation> fromFile(const std::string& path, const LoadOptions& options = {});
+    /// Same from an XML string; locations use virtualName, relative paths baseDir.
+    static std::unique_ptr<Simulation> fromString(const std::string& xml, const std::string& virtualName = "<string>",
+                                                  const std::string& baseDir = ".", const LoadOptions& options = {});
+    /// Takes a graph built in code; call init() before stepping.
+    explicit Simulation(std::unique_ptr<Node> root);
+    ~Simulation();
+
+    /// Initialises every component (dependencies first), assembles the mechanical groups,
+    /// resolves dt="auto" and observes the initial state.
+    void init();
+    /// Applies options (call before init).
+    void configure(const LoadOptions& options);
+    /// One step of dt: for each group: clear forces, forces, constraints, integrate; then observers.
+    void step();
+    void run(long steps);
+    /// Flushes observers and calls every component's cleanup (once).
+    void finish();
+
+    double time() const { return m_time; }
+    long stepCount() const { return m_step; }
+    double dt() const { return m_dt; }
+    void setDt(double dt);
+    /// Folder observers write into (default: the current directory).
+    void setOutputDir(const std::string& dir);
+    const std::string& outputDir() const;
+
+    Node& root() { return *m_root; }
+    /// A mechanical state by name or path ("organ", "/root/liver/mo"); throws when there is none.
+    BaseMechanicalState& state(const std::string& nameOrPath);
+    /// Any component by name or path; null when there is none.
+    Component* find(const std::string& nameOrPath) const;
+    const std::vector<MechanicalGroup>& groups() const { return m_groups; }
+    /// Smallest stable time step of every force field (infinity when none).
+    double criticalTimeStep() const;
+
+    /// Time spent in each component, sorted by path.
+    std::vector<TimerRow> timers() const;
+
+private:
+    std::unique_ptr<Node> m_root;
+    std::vector<MechanicalGroup> m_groups;
+    std::vector<BaseObserver*> m_observers;
+    std::vector<Component*> m_all;
+    double m_time = 0.0, m_dt = 0.0, m_dtOverride = 0.0;
+    long m_step = 0;
+    bool m_initialised = false, m_finished = false;
+};
+
+} // namespace fascia::core

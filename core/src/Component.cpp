@@ -1,0 +1,64 @@
+#include "fascia/base/Component.h"
+#include "fascia/scene/Node.h"
+
+#include <cxxabi.h>
+#include <cstdlib>
+#include <iostream>
+
+namespace fascia::core {
+
+Base::Base() = default;
+
+BaseParam* Base::findParam(const std::string& name) const {
+    for (auto* p : m_params)
+        if (p->name() == name) return p;
+    return nullptr;
+}
+
+std::vector<std::string> Base::paramNames() const {
+    std::vector<std::string> out;
+    for (auto* p : m_params) out.push_back(p->name());
+    return out;
+}
+
+namespace {
+std::string who(const Base& b) {
+    std::string s = b.className().empty() ? std::string("object") : b.className();
+    if (!b.name().empty()) s += " '" + b.name() + "'";
+    return s;
+}
+} // namespace
+
+void Base::fail(const std::string& message, std::vector<std::string> notes) const {
+    throwInputError(m_loc, who(*this) + ": " + message, std::move(notes));
+}
+
+void Base::fail(const BaseParam& p, const std::string& message, std::vector<std::string> notes) const {
+    throwInputError(p.loc().empty() ? m_loc : p.loc(), who(*this) + ": " + message, std::move(notes));
+}
+
+void Base::warn(const std::string& message) const {
+    const std::string where = m_loc.empty() ? std::string() : m_loc.str() + ": ";
+    std::cerr << where << "warning: " << who(*this) << ": " << message << "\n";
+}
+
+std::string Component::path() const {
+    std::string p = m_node ? m_node->path() : std::string();
+    if (p != "/") p += "/";
+    return p + name();
+}
+
+void BaseLink::parseValue(const std::string& text, const SourceLoc&) {
+    m_path = text;
+}
+
+std::string demangledTypeName(const char* mangled) {
+    int status = 0;
+    char* d = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
+    std::string s = (status == 0 && d) ? d : mangled;
+    std::free(d);
+    const auto colon = s.rfind("::");
+    return colon == std::string::npos ? s : s.substr(colon + 2);
+}
+
+} // namespace fascia::core

@@ -1,0 +1,116 @@
+#include "fascia/scene/Node.h"
+
+namespace fascia::core {
+
+Node::Node() { setClassName("Node"); }
+Node::Node(const std::string& name) : Node() { setName(name); }
+Node::~Node() = default;
+
+Node* Node::root() {
+    Node* n = this;
+    while (n->m_parent) n = n->m_parent;
+    return n;
+}
+
+std::string Node::path() const {
+    if (!m_parent) return "/" + name();
+    return m_parent->path() + "/" + name();
+}
+
+Node& Node::addChild(std::unique_ptr<Node> child) {
+    child->m_parent = this;
+    m_children.push_back(std::move(child));
+    return *m_children.back();
+}
+
+Node& Node::addChild(const std::string& name) { return addChild(std::make_unique<Node>(name)); }
+
+Component& Node::addComponent(std::unique_ptr<Component> c) {
+    c->m_node = this;
+    if (c->className().empty()) c->setClassName(demangledTypeName(typeid(*c).name()));
+    m_components.push_back(std::move(c));
+    return *m_components.back();
+}
+
+Node* Node::child(const std::string& name) const {
+    for (auto& c : m_children)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+Component* Node::component(const std::string& name) const {
+    for (auto& c : m_components)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+Component* Node::findByName(const std::string& name) const {
+    if (auto* c = component(name)) return c;
+    for (auto& ch : m_children)
+        if (auto* c = ch->findByName(name)) return c;
+    return nullptr;
+}
+
+namespace {
+std::vector<std::string> splitPath(const std::string& p) {
+    std::vector<std::string> parts;
+    std::string cur;
+    for (char c : p) {
+        if (c == '/') {
+            if (!cur.empty()) parts.push_back(cur);
+            cur.clear();
+        } else {
+            cur.push_back(c);
+        }
+    }
+    if (!cur.empty()) parts.push_back(cur);
+    return parts;
+}
+} // namespace
+
+Node* Node::resolveNode(const std::string& path) const {
+    const Node* n = this;
+    auto parts = splitPath(path);
+    size_t i = 0;
+    if (!path.empty() && path[0] == '/') {
+        n = const_cast<Node*>(this)->root();
+        // "/rootName/..." and "/..." both start at the root
+        if (!parts.empty() && parts[0] == n->name()) i = 1;
+    }
+    for (; i < parts.size(); ++i) {
+        if (parts[i] == ".") continue;
+        if (parts[i] == "..") {
+            if (!n->m_parent) return nullptr;
+            n = n->m_parent;
+            continue;
+        }
+        n = n->child(parts[i]);
+        if (!n) return nullptr;
+    }
+    return const_cast<Node*>(n);
+}
+
+Component* Node::resolveComponent(const std::string& path) const {
+    auto slash = path.rfind('/');
+    if (slash == std::string::npos) {
+        for (const Node* n = this; n; n = n->m_parent)
+            if (auto* c = n->component(path)) return c;
+        return nullptr;
+    }
+    Node* n = resolveNode(path.substr(0, slash + (slash == 0 ? 1 : 0)));
+    return n ? n->component(path.substr(slash + 1)) : nullptr;
+}
+
+SceneContext& Node::context() {
+    Node* r = root();
+    if (!r->m_context) r->m_context = std::make_unique<SceneContext>();
+    return *r->m_context;
+}
+
+Vec3 Node::contextGravity() const {
+    for (const Node* n = this; n; n = n->m_parent)
+        if (n->gravity.isSet()) return n->gravity.get();
+    return Vec3::Zero();
+}
+
+} // namespace fascia::core

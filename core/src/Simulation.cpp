@@ -1,0 +1,238 @@
+#include "fascia/sim/Simulation.h"
+#include "fascia/scene/SceneLoader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+namespace fascia::core {
+
+std::unique_ptr<Simulation> Simulation::fromFile(const std::string& path, const LoadOptions& options) {
+    auto root = buildScene(parseSceneFile(path));
+    root->context().sceneFile = path;
+    auto sim = std::make_unique<Simulation>(std::move(root));
+    sim->configure(options);
+    sim->init();
+    return sim;
+}
+
+std::unique_ptr<Simulation> Simulation::fromString(const std::string& xml, const std::string& virtualName,
+                                                   const std::string& baseDir, const LoadOptions& options) {
+    auto root = buildScene(parseSceneString(xml, virtualName, baseDir));
+    auto sim = std::make_unique<Simulation>(std::move(root));
+    sim->configure(options);
+    sim->init();
+    return sim;
+}
+
+Simulation::Simulation(std::unique_ptr<Node> root) : m_root(std::move(root)) {}
+
+void Simulation::configure(const LoadOptions& options) {
+    if (!options.outputDir.empty()) setOutputDir(options.outputDir);
+    if (options.dt > 0) m_dtOverride = options.dt;
+}
+
+Simulation::~Simulation() {
+    try {
+        finish();
+    } catch (...) {
+    }
+}
+
+namespace {
+
+void collect(Node& n, std::vector<Component*>& out) {
+    for (auto& c : n.components()) out.push_back(c.get());
+    for (auto& ch : n.children()) collect(*ch, out);
+}
+
+struct InitOrder {
+    std::set<Component*> done, active;
+    void run(Component* c) {
+        if (done.count(c)) return;
+        if (active.count(c))
+            c->fail("link cycle: " + c->path() + " depends, through its links, on itself");
+        active.insert(c);
+        for (BaseParam* p : c->params())
+            if (auto* t = dynamic_cast<Component*>(p->linkTarget())) run(t);
+        for (Component* d : c->dependencies()) run(d);
+        active.erase(c);
+        c->init();
+        done.insert(c);
+    }
+};
+
+} // namespace
+
+void Simulation::init() {
+    if (m_initialised) return;
+    m_all.clear();
+    collect(*m_root, m_all);
+    InitOrder order;
+    for (Component* c : m_all) order.run(c);
+
+    // assemble one group per state: a state belongs to the integrator in its context, and every
+    // force field, mass and constraint to the state in its context
+    m_groups.clear();
+    for (Component* c : m_all) {
+        auto* s = dynamic_cast<BaseMechanicalState*>(c);
+        if (!s) continue;
+        auto* integ = s->node()->findInContext<BaseIntegrator>();
+        if (!integ) {
+            s->warn("no integrator in its context: it will not move (add SemiImplicitEuler to its node or a parent)");
+            continue;
+        }
+        MechanicalGroup g;
+        g.integrator = integ;
+        g.state = s;
+        g.gravity = s->node()->contextGravity();
+        m_groups.push_back(std::move(g));
+    }
+    for (Component* c : m_all) {
+        auto* ff = dynamic_cast<BaseForceField*>(c);
+        auto* m = dynamic_cast<BaseMass*>(c);
+        auto* k = dynamic_cast<BaseConstraint*>(c);
+        if (!ff && !m && !k) continue;
+        auto* s = c->node()->findInContext<BaseMechanicalState>();
+        auto it = std::find_if(m_groups.begin(), m_groups.end(), [&](auto& g) { return g.state == s; });
+        if (it == m_groups.end()) {
+            c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
+                      : "no MechanicalObject in its context: it will not act");
+            continue;
+        }
+        if (ff) it->forceFields.push_back(ff);
+        if (m) it->masses.push_back(m);
+        if (k) it->constraints.push_back(k);
+    }
+    for (auto& g : m_groups) {
+        const size_t n = g.state->size();
+        g.mass.assign(n, 0.0);
+        for (auto* m : g.masses) {
+            const auto& mm = m->nodalMasses();
+            if (mm.size() != n)
+                m->fail("has " + std::to_string(mm.size()) + " nodal masses but its state '" + g.state->name() + "' has " +
+                        std::to_string(n) + " nodes");
+            for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
+        }
+        if (g.masses.empty() && n > 0 && !g.forceFields.empty())
+            g.state->fail("no mass in its context: add a LumpedMass next to it");
+        g.invMass.resize(n);
+        size_t massless = 0;
+        for (size_t i = 0; i < n; ++i) {
+            g.invMass[i] = g.mass[i] > 0 ? 1.0 / g.mass[i] : 0.0;
+            massless += g.mass[i] > 0 ? 0 : 1;
+        }
+        if (massless && !g.masses.empty())
+            g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+    }
+
+    // time step
+    const TimeStep& ts = m_root->dt.get();
+    if (m_dtOverride > 0) {
+        m_dt = m_dtOverride;
+    } else if (ts.automatic) {
+        const double crit = criticalTimeStep();
+        if (!std::isfinite(crit))
+            m_root->fail(m_root->dt, "dt=\"auto\" but no force field reports a stable time step; give dt in seconds");
+        m_dt = crit * m_root->dtSafety.get();
+    } else if (ts.value > 0) {
+        m_dt = ts.value;
+    }
+    if (m_dt > 0) setDt(m_dt);
+
+    for (Component* c : m_all)
+        if (auto* o = dynamic_cast<BaseObserver*>(c)) m_observers.push_back(o);
+    m_initialised = true;
+    SceneContext& ctx = m_root->context();
+    ctx.time = m_time;
+    ctx.step = m_step;
+    for (auto* o : m_observers) {
+        ScopedTimer t(o->timer());
+        o->observe(m_time, m_step);
+    }
+}
+
+double Simulation::criticalTimeStep() const {
+    double crit = std::numeric_limits<double>::infinity();
+    for (auto& g : m_groups)
+        for (auto* ff : g.forceFields) crit = std::min(crit, ff->stableTimeStep(*g.state));
+    return crit;
+}
+
+void Simulation::setDt(double dt) {
+    if (!(dt > 0) || !std::isfinite(dt))
+        throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
+    m_dt = dt;
+    m_root->context().dt = dt;
+    {
+        const double crit = criticalTimeStep();
+        if (dt > crit)
+            m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
+                         " s of the force fields: the explicit integration will likely be unstable");
+        for (Component* c : m_all) c->dtChanged(dt);
+    }
+}
+
+void Simulation::setOutputDir(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwInputError({}, "cannot create output folder '" + dir + "': " + ec.message());
+    m_root->context().outputDir = dir;
+}
+
+const std::string& Simulation::outputDir() const { return m_root->context().outputDir; }
+
+void Simulation::step() {
+    if (!m_initialised) init();
+    if (!(m_dt > 0))
+        throwInputError(m_root->loc(), "no time step: set dt on the root node (seconds or \"auto\") or pass --dt");
+    SceneContext& ctx = m_root->context();
+    for (Component* c : m_all) c->beginStep(m_time, m_dt);
+    for (auto& g : m_groups) {
+        g.stepIndex = m_step + 1;
+        {
+            ScopedTimer t(g.integrator->timer());
+            g.integrator->step(g, m_time, m_dt);
+        }
+        g.checkFinite(m_time + m_dt);
+    }
+    ++m_step;
+    m_time = m_step * m_dt;  // no drift from summing dt
+    ctx.time = m_time;
+    ctx.step = m_step;
+    for (auto* o : m_observers) {
+        ScopedTimer t(o->timer());
+        o->observe(m_time, m_step);
+    }
+}
+
+void Simulation::run(long steps) {
+    for (long i = 0; i < steps; ++i) step();
+}
+
+void Simulation::finish() {
+    if (m_finished || !m_initialised) return;
+    m_finished = true;
+    for (Component* c : m_all) c->cleanup();
+}
+
+BaseMechanicalState& Simulation::state(const std::string& nameOrPath) {
+    auto* s = dynamic_cast<BaseMechanicalState*>(find(nameOrPath));
+    if (!s) throwInputError({}, "no mechanical state '" + nameOrPath + "' in the scene");
+    return *s;
+}
+
+Component* Simulation::find(const std::string& nameOrPath) const {
+    if (nameOrPath.find('/') != std::string::npos) return m_root->resolveComponent(nameOrPath);
+    return m_root->findByName(nameOrPath);
+}
+
+std::vector<TimerRow> Simulation::timers() const {
+    std::vector<TimerRow> rows;
+    for (Component* c : m_all) rows.push_back({c->path(), c->className(), c->timer().seconds, c->timer().calls});
+    return rows;
+}
+
+} // namespace fascia::core

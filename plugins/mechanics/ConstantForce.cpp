@@ -1,0 +1,24 @@
+#include "ConstantForce.h"
+
+namespace fascia::mechanics {
+
+void ConstantForce::init() {
+    auto& s = contextState(*this);
+    m_nodes = m_select.resolve(*this, s);
+    if (m_force.isSet() == m_totalForce.isSet())
+        fail(m_force.isSet() ? "give force or totalForce, not both" : "give force (per node) or totalForce");
+    if (m_nodes.empty()) fail("selects no node");
+    m_perNode = m_force.isSet() ? m_force.get() : Vec3(m_totalForce.get() / double(m_nodes.size()));
+}
+
+void ConstantForce::addForce(core::BaseMechanicalState&, Positions& f, double) {
+    for (int i : m_nodes) f[i] += m_perNode;
+}
+
+double ConstantForce::potentialEnergy(const core::BaseMechanicalState& s) const {
+    double e = 0;
+    for (int i : m_nodes) e -= m_perNode.dot(s.x()[i] - s.x0()[i]);
+    return e;
+}
+
+} // namespace fascia::mechanics

@@ -1,0 +1,1 @@
+#include "Integrator.h"

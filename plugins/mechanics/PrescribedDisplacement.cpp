@@ -1,0 +1,72 @@
+#include "PrescribedDisplacement.h"
+
+#include <algorithm>
+
+namespace fascia::mechanics {
+
+void PrescribedDisplacement::init() {
+    auto& s = contextState(*this);
+    m_nodes = m_select.resolve(*this, s);
+    m_mask = readAxisMask(*this, m_directions);
+    const std::string& k = m_shape.get();
+    m_kind = k == "ramp" ? 0 : k == "rampHold" ? 1 : k == "smooth" ? 2 : 3;
+    projectPositions(s, 0);
+    projectVelocities(s, 0);
+}
+
+double PrescribedDisplacement::shape(double t) const {
+    const double tau = t - m_startTime.get();
+    if (tau <= 0) return 0;
+    const double r = tau / m_rampTime.get();
+    switch (m_kind) {
+    case 0: return r;
+    case 1: return std::min(r, 1.0);
+    case 2: {
+        const double q = std::min(r, 1.0);
+        return q * q * q * (10 - 15 * q + 6 * q * q);
+    }
+    default: return 1;
+    }
+}
+
+double PrescribedDisplacement::shapeRate(double t) const {
+    const double tau = t - m_startTime.get();
+    if (tau <= 0) return 0;
+    const double T = m_rampTime.get(), r = tau / T;
+    switch (m_kind) {
+    case 0: return 1 / T;
+    case 1: return r < 1 ? 1 / T : 0;
+    case 2: return r < 1 ? 30 * r * r * (1 - r) * (1 - r) / T : 0;
+    default: return 0;
+    }
+}
+
+void PrescribedDisplacement::projectPositions(core::BaseMechanicalState& s, double t) {
+    const Vec3 u = shape(t) * m_displacement.get();
+    auto& x = s.x();
+    const auto& x0 = s.x0();
+    for (int i : m_nodes)
+        for (int a = 0; a < 3; ++a)
+            if (m_mask[a]) x[i][a] = x0[i][a] + u[a];
+}
+
+void PrescribedDisplacement::projectVelocities(core::BaseMechanicalState& s, double t) {
+    const Vec3 w = shapeRate(t) * m_displacement.get();
+    auto& v = s.v();
+    for (int i : m_nodes)
+        for (int a = 0; a < 3; ++a)
+            if (m_mask[a]) v[i][a] = w[a];
+}
+
+void PrescribedDisplacement::projectForces(core::BaseMechanicalState& s) {
+    auto& f = s.f();
+    auto& r = s.reaction();
+    for (int i : m_nodes)
+        for (int a = 0; a < 3; ++a)
+            if (m_mask[a]) {
+                r[i][a] = -f[i][a];
+                f[i][a] = 0;
+            }
+}
+
+} // namespace fascia::mechanics

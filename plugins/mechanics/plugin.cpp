@@ -1,0 +1,26 @@
+// fascia.mechanics: state, mass, integrators, constraints and loads.
+#include "fascia/plugin/Plugin.h"
+
+#include "CentralDifference.h"
+#include "ConstantForce.h"
+#include "ExplicitEuler.h"
+#include "FixedConstraint.h"
+#include "LumpedMass.h"
+#include "MechanicalObject.h"
+#include "PrescribedDisplacement.h"
+#include "SemiImplicitEuler.h"
+
+using namespace fascia::mechanics;
+
+static void registerMechanics(fascia::core::Registry& r) {
+    r.add<MechanicalObject>("MechanicalObject", "positions, velocities, forces and reactions of a body's nodes");
+    r.add<LumpedMass>("LumpedMass", "diagonal mass from a density or a total mass (HEML section 3.3)");
+    r.add<SemiImplicitEuler>("SemiImplicitEuler", "semi-implicit Euler integration with Rayleigh damping (HEML eq. (32))");
+    r.add<ExplicitEuler>("ExplicitEuler", "explicit Euler integration with Rayleigh damping (HEML eq. (31))");
+    r.add<CentralDifference>("CentralDifference", "central-difference integration with Rayleigh damping (TLED section 2)");
+    r.add<FixedConstraint>("FixedConstraint", "fixes nodes in all or some directions (rollers, symmetry planes)");
+    r.add<PrescribedDisplacement>("PrescribedDisplacement", "nodes follow a displacement times a load shape over time");
+    r.add<ConstantForce>("ConstantForce", "a constant force on nodes");
+}
+
+FASCIA_PLUGIN("fascia.mechanics", "0.1.0", "state, mass, integrators, constraints and loads", registerMechanics)

@@ -1,0 +1,195 @@
+// Mechanics: free fall, constraints, prescribed motion, damping, parameter checks.
+#include "fascia/sim/Simulation.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using fascia::core::Error;
+using fascia::core::Simulation;
+
+namespace {
+
+/// Three free points of 1 kg each (a point cloud: totalMass shared equally).
+std::string cloud(const std::string& integrator, const std::string& extra = "", const std::string& gravity = "0 0 -9.81") {
+    return "<Node name=\"root\" dt=\"0.01\" gravity=\"" + gravity + "\">\n"
+           "  <Node name=\"body\">\n"
+           "    <" + integrator + "/>\n"
+           "    <MechanicalObject name=\"mo\" position=\"0 0 0  1 0 0  0 1 0\"/>\n"
+           "    <LumpedMass totalMass=\"3\"/>\n" +
+           extra +
+           "  </Node>\n"
+           "</Node>\n";
+}
+
+std::string errorOf(const std::string& xml) {
+    try {
+        Simulation::fromString(xml, "scene.xml");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST_CASE("a free body under gravity follows u = g t^2/2 to round-off", "[SemiImplicitEuler][CentralDifference]") {
+    const std::string integrator = GENERATE(as<std::string>{}, "SemiImplicitEuler", "CentralDifference");
+    CAPTURE(integrator);
+    auto sim = Simulation::fromString(cloud(integrator));
+    auto& mo = sim->state("mo");
+    for (int n = 1; n <= 200; ++n) {
+        sim->step();
+        const double t = sim->time();
+        const double expected = -0.5 * 9.81 * t * t;
+        REQUIRE(mo.x()[1][2] == Approx(expected).epsilon(1e-12).margin(1e-14));
+        REQUIRE(mo.x()[1][0] == 1.0);
+    }
+}
+
+TEST_CASE("plain semi-implicit Euler from rest is first order, as HEML eq. (32) says", "[SemiImplicitEuler]") {
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler halfStepStart=\"false\""));
+    sim->run(10);
+    const double t = sim->time(), dt = 0.01;
+    // x_n = g dt^2 n (n+1)/2 = g t (t + dt)/2
+    CHECK(sim->state("mo").x()[0][2] == Approx(-0.5 * 9.81 * t * (t + dt)).epsilon(1e-12));
+}
+
+TEST_CASE("explicit Euler follows HEML eq. (31)", "[ExplicitEuler]") {
+    auto sim = Simulation::fromString(cloud("ExplicitEuler"));
+    sim->run(10);
+    const double t = sim->time(), dt = 0.01;
+    // x_n = g dt^2 n (n-1)/2
+    CHECK(sim->state("mo").x()[0][2] == Approx(-0.5 * 9.81 * t * (t - dt)).epsilon(1e-12));
+}
+
+TEST_CASE("a fixed node stays exactly fixed and reports its reaction", "[FixedConstraint]") {
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler", "    <FixedConstraint indices=\"2\"/>\n"));
+    auto& mo = sim->state("mo");
+    sim->run(50);
+    CHECK(mo.x()[2] == mo.x0()[2]);
+    CHECK(mo.v()[2].norm() == 0.0);
+    // the support holds the node's weight: reaction = -m g
+    CHECK(mo.reaction()[2][2] == Approx(9.81));
+    CHECK(mo.x()[0][2] < -0.01);
+}
+
+TEST_CASE("a roller moves only along its free axes", "[FixedConstraint]") {
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler",
+                                            "    <FixedConstraint indices=\"0 1 2\" directions=\"0 0 1\"/>\n"
+                                            "    <ConstantForce indices=\"1\" force=\"2 3 4\"/>\n"));
+    auto& mo = sim->state("mo");
+    sim->run(20);
+    CHECK(mo.x()[1][2] == mo.x0()[1][2]);
+    CHECK(mo.x()[1][0] > mo.x0()[1][0]);
+    CHECK(mo.x()[1][1] > mo.x0()[1][1]);
+    CHECK(mo.reaction()[1][2] == Approx(-4 + 9.81));
+}
+
+TEST_CASE("prescribed displacement follows its load shape exactly", "[PrescribedDisplacement]") {
+    const std::string shape = GENERATE(as<std::string>{}, "ramp", "rampHold", "smooth", "step");
+    CAPTURE(shape);
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler",
+                                            "    <PrescribedDisplacement indices=\"1\" displacement=\"0.1 0 -0.2\" shape=\"" +
+                                                shape + "\" rampTime=\"0.5\" startTime=\"0.1\"/>\n",
+                                            "0 0 0"));
+    auto& mo = sim->state("mo");
+    for (int n = 1; n <= 100; ++n) {
+        sim->step();
+        const double t = sim->time();
+        const double tau = t - 0.1, r = std::max(0.0, tau / 0.5), q = std::min(r, 1.0);
+        double s = 0;
+        if (tau > 0) {
+            if (shape == "ramp") s = r;
+            else if (shape == "rampHold") s = q;
+            else if (shape == "smooth") s = 10 * q * q * q - 15 * q * q * q * q + 6 * q * q * q * q * q;
+            else s = 1;
+        }
+        INFO("t = " << t);
+        REQUIRE(mo.x()[1][0] == Approx(1.0 + 0.1 * s).epsilon(1e-14));
+        REQUIRE(mo.x()[1][2] == Approx(-0.2 * s).margin(1e-15));
+    }
+}
+
+TEST_CASE("mass-proportional damping decays velocity as (1 - alpha dt)^n", "[SemiImplicitEuler]") {
+    auto sim = Simulation::fromString(
+        "<Node name=\"root\" dt=\"0.001\">\n"
+        "  <SemiImplicitEuler damping=\"5\"/>\n"
+        "  <MechanicalObject name=\"mo\" position=\"0 0 0\" initialVelocity=\"1 0 0\"/>\n"
+        "  <LumpedMass totalMass=\"2\"/>\n"
+        "</Node>\n");
+    auto& mo = sim->state("mo");
+    sim->run(400);
+    // half-step start: first factor (1 - alpha dt/2)
+    const double expected = (1 - 5 * 0.0005) * std::pow(1 - 5 * 0.001, 399);
+    CHECK(mo.v()[0][0] == Approx(expected).epsilon(1e-12));
+    // the continuous decay exp(-alpha t), within the scheme's first-order error alpha^2 dt t/2 = 5e-3
+    CHECK(mo.v()[0][0] == Approx(std::exp(-5 * 0.4)).epsilon(5e-3));
+}
+
+TEST_CASE("central difference with damping decays like the continuous solution", "[CentralDifference]") {
+    auto sim = Simulation::fromString(
+        "<Node name=\"root\" dt=\"0.001\">\n"
+        "  <CentralDifference damping=\"5\"/>\n"
+        "  <MechanicalObject name=\"mo\" position=\"0 0 0\" initialVelocity=\"1 0 0\"/>\n"
+        "  <LumpedMass totalMass=\"2\"/>\n"
+        "</Node>\n");
+    sim->run(400);
+    // x(t) = (1 - exp(-alpha t))/alpha for v0 = 1
+    CHECK(sim->state("mo").x()[0][0] == Approx((1 - std::exp(-2.0)) / 5).epsilon(1e-4));
+    CHECK(sim->state("mo").v()[0][0] == Approx(std::exp(-2.0)).epsilon(1e-3));
+}
+
+TEST_CASE("mechanics parameters are checked with located errors", "[MechanicalObject][LumpedMass][FixedConstraint]") {
+    using Catch::Matchers::Contains;
+    SECTION("negative density") {
+        auto e = errorOf(cloud("SemiImplicitEuler").replace(cloud("SemiImplicitEuler").find("totalMass=\"3\""), 13, "density=\"-1\""));
+        CHECK_THAT(e, Contains("scene.xml:5: error: LumpedMass") && Contains("density = -1 is outside > 0"));
+    }
+    SECTION("both density and total mass") {
+        auto xml = cloud("SemiImplicitEuler");
+        xml.replace(xml.find("totalMass"), 0, "density=\"1000\" ");
+        CHECK_THAT(errorOf(xml), Contains("scene.xml:5: error: LumpedMass") && Contains("not both"));
+    }
+    SECTION("index out of range") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <FixedConstraint indices=\"7\"/>\n")),
+                   Contains("scene.xml:6: error: FixedConstraint") && Contains("node index 7 is out of range") &&
+                       Contains("3 nodes"));
+    }
+    SECTION("no nodes given") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <FixedConstraint/>\n")),
+                   Contains("scene.xml:6:") && Contains("indices=") && Contains("group="));
+    }
+    SECTION("a bad axis mask") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <FixedConstraint indices=\"0\" directions=\"1 2 0\"/>\n")),
+                   Contains("scene.xml:6:") && Contains("directions"));
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <FixedConstraint indices=\"0\" directions=\"1 1\"/>\n")),
+                   Contains("scene.xml:6:") && Contains("expected 3"));
+    }
+    SECTION("a bad load shape") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler",
+                                 "    <PrescribedDisplacement indices=\"0\" displacement=\"0 0 1\" shape=\"sine\"/>\n")),
+                   Contains("scene.xml:6:") && Contains("one of ramp|rampHold|smooth|step"));
+    }
+    SECTION("missing displacement") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <PrescribedDisplacement indices=\"0\"/>\n")),
+                   Contains("scene.xml:6:") && Contains("missing required parameter 'displacement'"));
+    }
+    SECTION("negative damping") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler damping=\"-1\"")), Contains("scene.xml:3:") && Contains("damping"));
+    }
+    SECTION("velocity count mismatch") {
+        auto xml = cloud("SemiImplicitEuler");
+        xml.replace(xml.find("position="), 0, "velocity=\"0 0 0\" ");
+        CHECK_THAT(errorOf(xml), Contains("scene.xml:4:") && Contains("1 entries for 3 nodes"));
+    }
+    SECTION("constant force given twice") {
+        CHECK_THAT(errorOf(cloud("SemiImplicitEuler", "    <ConstantForce indices=\"0\" force=\"1 0 0\" totalForce=\"1 0 0\"/>\n")),
+                   Contains("scene.xml:6:") && Contains("not both"));
+    }
+    SECTION("no state") {
+        CHECK_THAT(errorOf("<Node name=\"root\" dt=\"0.1\">\n  <LumpedMass totalMass=\"1\"/>\n</Node>\n"),
+                   Contains("scene.xml:2:") && Contains("no MechanicalObject"));
+    }
+}
