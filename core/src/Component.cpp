@@ -1,5 +1,6 @@
 #include "fascia/base/Component.h"
 #include "fascia/scene/Node.h"
+#include "fascia/sim/Mechanics.h"
 
 #include <cxxabi.h>
 #include <cstdlib>
@@ -48,7 +49,18 @@ std::string Component::path() const {
     return p + name();
 }
 
+std::vector<Component*> Component::dependencies() const {
+    std::vector<Component*> out;
+    if (!m_node) return out;
+    if (auto* t = m_node->findInContext<BaseTopology>(); t && t != this) out.push_back(t);
+    if (auto* s = m_node->findInContext<BaseMechanicalState>(); s && s != this) out.push_back(s);
+    return out;
+}
+
 void BaseLink::parseValue(const std::string& text, const SourceLoc&) {
+    // read() keeps "@..." texts as links; anything else would be silently ignored
+    if (!text.empty())
+        m_owner->fail(*this, name() + " = \"" + text + "\" is not a link: write \"@" + text + "\"");
     m_path = text;
 }
 

@@ -71,6 +71,16 @@ void MechanicalGroup::checkFinite(double t) {
             throwSimulationError("[" + ff->path() + "] step " + std::to_string(stepIndex) + ": non-finite force (" +
                                  vecText(tmp[i]) + ") at node " + std::to_string(i));
     }
+    // the step's forces are still in f: a non-finite one names its force field (or lists them)
+    const long badF = firstNonFinite(state->f());
+    if (badF >= 0 && !forceFields.empty()) {
+        std::string others;
+        if (forceFields.size() > 1)
+            for (auto* ff : forceFields) others += (others.empty() ? " from one of " : ", ") + ff->path();
+        throwSimulationError("[" + (forceFields.size() == 1 ? forceFields[0]->path() : state->path()) + "] step " +
+                             std::to_string(stepIndex) + ": non-finite force (" + vecText(state->f()[size_t(badF)]) +
+                             ") at node " + std::to_string(badF) + others);
+    }
     const long node = bad >= 0 ? bad : badV;
     throwSimulationError(stepText + "node " + std::to_string(node) + " has a non-finite " +
                          (bad >= 0 ? "position" : "velocity") + " after " + integrator->className() + " '" +

@@ -278,13 +278,13 @@ BaseParam::BaseParam(Base* owner, ParamSpec spec) : m_owner(owner), m_spec(std::
 
 void BaseParam::read(const std::string& text, const SourceLoc& loc) {
     m_loc = loc;
+    if (m_spec.isOutput && !isComponentLink())
+        m_owner->fail(*this, "'" + name() + "' is computed by the component and cannot be set; it can only be linked to");
     if (!text.empty() && text[0] == '@') {
         m_link = text;
         markSet();
         return;
     }
-    if (m_spec.isOutput && !isComponentLink())
-        m_owner->fail(*this, "'" + name() + "' is computed by the component and cannot be set; it can only be linked to");
     parseValue(text, loc);
     markSet();
     checkValue();

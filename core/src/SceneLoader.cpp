@@ -194,7 +194,8 @@ void resolveLinks(Node& root) {
                 std::string compPath = link, field;
                 if (!p->isComponentLink()) {
                     auto dot = link.rfind('.');
-                    if (dot == std::string::npos || dot < link.rfind('/'))
+                    const auto slash = link.rfind('/');
+                    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
                         c->fail(*p, p->name() + " = \"" + p->linkText() + "\" must link to a field: \"@component.field\"");
                     compPath = link.substr(0, dot);
                     field = link.substr(dot + 1);

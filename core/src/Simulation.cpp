@@ -41,6 +41,12 @@ Simulation::~Simulation() {
     }
 }
 
+/// Marks a component initialised (Component befriends it).
+class SceneInit {
+public:
+    static void markInitialised(Component& c) { c.m_initialised = true; }
+};
+
 namespace {
 
 void collect(Node& n, std::vector<Component*>& out) {
@@ -60,6 +66,7 @@ struct InitOrder {
         for (Component* d : c->dependencies()) run(d);
         active.erase(c);
         c->init();
+        SceneInit::markInitialised(*c);
         done.insert(c);
     }
 };
@@ -232,6 +239,7 @@ Component* Simulation::find(const std::string& nameOrPath) const {
 std::vector<TimerRow> Simulation::timers() const {
     std::vector<TimerRow> rows;
     for (Component* c : m_all) rows.push_back({c->path(), c->className(), c->timer().seconds, c->timer().calls});
+    std::sort(rows.begin(), rows.end(), [](const TimerRow& a, const TimerRow& b) { return a.path < b.path; });
     return rows;
 }
 

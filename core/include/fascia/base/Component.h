@@ -92,7 +92,9 @@ public:
     virtual void beginStep(double t, double dt) {}
 
     /// Components this one needs initialised first (besides those it links to by parameter).
-    virtual std::vector<Component*> dependencies() const { return {}; }
+    /// By default: the mesh source (BaseTopology) and the mechanical state found in its context,
+    /// which most components read at init.
+    virtual std::vector<Component*> dependencies() const;
 
     Timer& timer() { return m_timer; }
     const Timer& timer() const { return m_timer; }

@@ -14,6 +14,8 @@ namespace fascia::core {
 class BaseTopology : public Component {
 public:
     virtual const MeshData& meshData() const = 0;
+    /// A mesh source reads files or parameters only.
+    std::vector<Component*> dependencies() const override { return {}; }
 };
 
 /// Node data of one deformable body: positions, rest positions, velocities, forces, reactions.

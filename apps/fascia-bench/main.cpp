@@ -1,0 +1,225 @@
+// fascia-bench: times full explicit steps (forces, integration, constraints) of a force field on a
+// mesh and prints one JSON object per case. See `fascia-bench --help`.
+#include "fascia/sim/Simulation.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace fascia::core;
+using fascia::Vec3;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kHelp = R"(fascia-bench: time full explicit steps of a force field
+
+usage:
+  fascia-bench [--forcefield HEML|TLED] [--material NAME] [--mesh FILE | --cube N]
+               [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
+               [--viscous] [--determinism]
+  fascia-bench --suite [--steps N] [--repeat R]
+
+  --forcefield    HEML (default) or TLED
+  --material      a material component: CompressibleNeoHookean (default), StVenantKirchhoff,
+                  NeoHookean, TransverselyIsotropic, ... (E = 3 kPa, nu = 0.45 where it applies)
+  --mesh FILE     a mesh file (Gmsh, VTK, TetGen)
+  --cube N        a generated unit cube of N x N x N cells (6 tetrahedra per cell by default)
+  --steps N       timed steps per repeat (default 200)
+  --threads T     OpenMP threads (default 2)
+  --repeat R      timed repeats; the median is reported with min and max (default 5)
+  --viscous       add a one-term ViscoelasticProny to the force field's node
+  --determinism   also run with 1 thread and report whether positions are bitwise identical
+  --suite         the standard set of docs/performance.md
+
+Each case prints one JSON object: forcefield, material, mesh, elements, nodes, threads, precision,
+steps, ms_per_step (median), ms_min, ms_max, ns_per_element_step.
+)";
+
+struct Case {
+    std::string forcefield = "HEML", material = "CompressibleNeoHookean", mesh, element = "tetrahedra6";
+    int cube = 0, steps = 200, threads = 2, repeat = 5;
+    bool viscous = false, determinism = false;
+};
+
+std::string materialXml(const std::string& m) {
+    std::string attrs = "youngModulus=\"3000\" poissonRatio=\"0.45\"";
+    if (m == "IncompressibleNeoHookean") attrs = "C1=\"500\"";
+    if (m == "IncompressibleMooneyRivlin") attrs = "C1=\"400\" C2=\"100\"";
+    if (m == "CompressibleMooneyRivlin") attrs = "C1=\"400\" C2=\"100\" kappa=\"10000\"";
+    if (m == "TransverselyIsotropic") attrs += " eta=\"2000\" direction=\"0 1 1\"";
+    if (m == "Orthotropic") attrs += " eta=\"2000\" direction=\"0 1 0\" eta2=\"1000\" direction2=\"1 0 0\"";
+    return "<" + m + " name=\"material\" " + attrs + "/>";
+}
+
+std::string findMesh(const std::string& name) {
+    for (const std::string& dir : {std::string("."), std::string("scenes/meshes"), std::string(FASCIA_SOURCE_DIR) + "/scenes/meshes"}) {
+        fs::path p = fs::path(dir) / name;
+        if (fs::exists(p)) return p.string();
+    }
+    return name;
+}
+
+std::string sceneXml(const Case& c) {
+    std::ostringstream s;
+    s << "<Node name=\"root\" dt=\"1e-5\">\n  <Node name=\"body\">\n";
+    if (!c.mesh.empty())
+        s << "    <MeshLoader name=\"loader\" filename=\"" << fs::absolute(c.mesh).string() << "\"/>\n";
+    else
+        s << "    <GridMesh name=\"loader\" min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"" << c.cube << " " << c.cube << " "
+          << c.cube << "\" element=\"" << c.element << "\"/>\n";
+    s << "    <MechanicalObject name=\"state\"/>\n"
+      << "    <LumpedMass density=\"1000\"/>\n"
+      << "    " << materialXml(c.material) << "\n"
+      << "    <" << c.forcefield << "ForceField name=\"ff\"/>\n";
+    if (c.viscous) s << "    <ViscoelasticProny alpha=\"0.5\" tau=\"0.58\"/>\n";
+    s << "    <SemiImplicitEuler/>\n"
+      << "    <BoxROI name=\"base\" box=\"-1e9 -1e9 -1e9 1e9 1e9 " << (c.mesh.empty() ? "0.001" : "-0.04") << "\"/>\n"
+      << "    <FixedConstraint indices=\"@base.indices\"/>\n"
+      << "  </Node>\n</Node>\n";
+    return s.str();
+}
+
+/// A smooth, deterministic deformation so that every element works (no rest-state shortcut).
+void deform(BaseMechanicalState& st) {
+    for (size_t i = 0; i < st.size(); ++i) {
+        const Vec3& X = st.x0()[i];
+        st.x()[i] = X + 0.002 * Vec3(std::sin(40 * X[1]), std::sin(40 * X[2]), std::sin(40 * X[0]));
+    }
+}
+
+std::unique_ptr<Simulation> build(const Case& c, int threads) {
+    omp_set_num_threads(threads);
+    auto sim = Simulation::fromString(sceneXml(c), "<bench>");
+    // the time step must stay stable for the timed steps: use a fraction of the critical one
+    const double crit = sim->criticalTimeStep();
+    if (std::isfinite(crit)) sim->setDt(0.5 * crit);
+    deform(sim->state("state"));
+    return sim;
+}
+
+void runCase(const Case& c) {
+    auto sim = build(c, c.threads);
+    auto* ff = dynamic_cast<BaseForceField*>(sim->find("ff"));
+    const size_t elements = ff ? ff->elementCount() : 0;
+    const size_t nodes = sim->state("state").size();
+    sim->run(5);  // warm-up
+    std::vector<double> ms;
+    for (int r = 0; r < c.repeat; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        sim->run(c.steps);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / c.steps);
+    }
+    std::sort(ms.begin(), ms.end());
+    const double med = ms[ms.size() / 2];
+    std::string identical;
+    if (c.determinism) {
+        auto a = build(c, 1), b = build(c, c.threads);
+        a->run(50);
+        b->run(50);
+        bool same = true;
+        auto& xa = a->state("state").x();
+        auto& xb = b->state("state").x();
+        for (size_t i = 0; i < xa.size() && same; ++i) same = (xa[i].array() == xb[i].array()).all();
+        identical = std::string(", \"bitwise_identical_1_vs_") + std::to_string(c.threads) + "_threads\": " + (same ? "true" : "false");
+    }
+    std::printf("{\"forcefield\": \"%s\", \"material\": \"%s\"%s, \"mesh\": \"%s\", \"elements\": %zu, \"nodes\": %zu, "
+                "\"threads\": %d, \"precision\": \"double\", \"steps\": %d, \"ms_per_step\": %.5f, \"ms_min\": %.5f, "
+                "\"ms_max\": %.5f, \"ns_per_element_step\": %.3f%s}\n",
+                c.forcefield.c_str(), c.material.c_str(), c.viscous ? ", \"viscoelastic\": true" : "",
+                c.mesh.empty() ? ("cube" + std::to_string(c.cube) + "-" + c.element).c_str() : fs::path(c.mesh).filename().c_str(),
+                elements, nodes, c.threads, c.steps, med, ms.front(), ms.back(), elements ? med * 1e6 / double(elements) : 0.0,
+                identical.c_str());
+    std::fflush(stdout);
+}
+
+int parseInt(const char* v, const char* opt) {
+    if (!v) {
+        std::cerr << "fascia-bench: " << opt << " needs a value\n";
+        std::exit(1);
+    }
+    char* end;
+    long x = std::strtol(v, &end, 10);
+    if (*end || x <= 0) {
+        std::cerr << "fascia-bench: " << opt << " needs a positive integer\n";
+        std::exit(1);
+    }
+    return int(x);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Case c;
+    bool suite = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+        auto str = [&](const char* opt) {
+            const char* v = next();
+            if (!v) {
+                std::cerr << "fascia-bench: " << opt << " needs a value\n";
+                std::exit(1);
+            }
+            return std::string(v);
+        };
+        if (a == "--help" || a == "-h") {
+            std::cout << kHelp;
+            return 0;
+        } else if (a == "--forcefield") c.forcefield = str("--forcefield");
+        else if (a == "--material") c.material = str("--material");
+        else if (a == "--mesh") c.mesh = str("--mesh");
+        else if (a == "--cube") c.cube = parseInt(next(), "--cube");
+        else if (a == "--element") c.element = str("--element");
+        else if (a == "--steps") c.steps = parseInt(next(), "--steps");
+        else if (a == "--threads") c.threads = parseInt(next(), "--threads");
+        else if (a == "--repeat") c.repeat = parseInt(next(), "--repeat");
+        else if (a == "--viscous") c.viscous = true;
+        else if (a == "--determinism") c.determinism = true;
+        else if (a == "--suite") suite = true;
+        else {
+            std::cerr << "fascia-bench: unknown option '" << a << "' (see --help)\n";
+            return 1;
+        }
+    }
+    if (c.forcefield != "HEML" && c.forcefield != "TLED") {
+        std::cerr << "fascia-bench: --forcefield is HEML or TLED\n";
+        return 1;
+    }
+    try {
+        if (!suite) {
+            if (c.mesh.empty() && c.cube == 0) c.cube = 16;
+            runCase(c);
+            return 0;
+        }
+        for (const std::string& mat : {"CompressibleNeoHookean", "StVenantKirchhoff"})
+            for (const std::string& mesh : {"organ_4430.msh", "organ_21436.msh", "cube70"})
+                for (int threads : {1, 2}) {
+                    Case s = c;
+                    s.material = mat;
+                    s.threads = threads;
+                    if (mesh == "cube70") {
+                        s.mesh.clear();
+                        s.cube = 70;  // 70^3 * 6 = 2.06M tetrahedra
+                        s.steps = std::min(c.steps, 20);
+                        s.repeat = std::min(c.repeat, 3);
+                    } else {
+                        s.mesh = findMesh(mesh);
+                    }
+                    runCase(s);
+                }
+        return 0;
+    } catch (const Error& e) {
+        std::cerr << e.what() << "\n";
+        return e.kind() == ErrorKind::Input ? 2 : 3;
+    }
+}

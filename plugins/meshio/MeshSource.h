@@ -1,0 +1,23 @@
+#pragma once
+/// What MeshLoader and GridMesh share: the mesh, and its parts as linkable outputs
+/// ("@loader.positions", "@loader.tetrahedra", "@loader.mesh").
+#include "fascia/sim/Mechanics.h"
+
+namespace fascia::meshio {
+
+class MeshSource : public core::BaseTopology {
+public:
+    const MeshData& meshData() const override { return m_mesh.get(); }
+
+    core::Param<MeshData> m_mesh{this, core::ParamSpec("mesh").output().help("the whole mesh (points, elements, groups, cell arrays)")};
+    core::Param<Positions> m_positions{this, core::ParamSpec("positions").output().unit("m").help("node positions")};
+    core::Param<Tetrahedra> m_tetrahedra{this, core::ParamSpec("tetrahedra").output().help("tetrahedra (4 node indices each)")};
+    core::Param<Hexahedra> m_hexahedra{this, core::ParamSpec("hexahedra").output().help("hexahedra (8 node indices each, VTK order)")};
+    core::Param<Triangles> m_triangles{this, core::ParamSpec("triangles").output().help("boundary triangles")};
+
+protected:
+    /// Publishes a mesh to the outputs.
+    void publish(MeshData mesh);
+};
+
+} // namespace fascia::meshio

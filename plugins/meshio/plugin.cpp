@@ -1,0 +1,16 @@
+// fascia.meshio: meshes in (files, generated grids, regions), results out.
+#include "fascia/plugin/Plugin.h"
+
+#include "BoxROI.h"
+#include "GridMesh.h"
+#include "MeshLoader.h"
+
+using namespace fascia::meshio;
+
+static void registerMeshio(fascia::core::Registry& r) {
+    r.add<MeshLoader>("MeshLoader", "reads a volume mesh: Gmsh .msh (1, 2.2, 4.1), VTK .vtk/.vtu, TetGen .node/.ele");
+    r.add<GridMesh>("GridMesh", "a box split into hexahedra or tetrahedra, with its six faces as node groups");
+    r.add<BoxROI>("BoxROI", "the nodes and elements inside a box, as index lists");
+}
+
+FASCIA_PLUGIN("fascia.meshio", "0.1.0", "mesh loaders, generated meshes, regions, exporters and monitors", registerMeshio)
