@@ -151,6 +151,10 @@ const LoadedPlugin& PluginManager::loadFile(const std::string& file, const Sourc
         reg.setCurrentPlugin("", "");
         // keep the library mapped: the registry may have copied nothing of it, but it costs nothing
         throw Error(e.kind(), loc.empty() ? e.loc() : loc, e.message(), e.notes());
+    } catch (const std::exception& e) {
+        reg.removePlugin(id);
+        reg.setCurrentPlugin("", "");
+        throwInputError(loc, "plugin '" + file + "' failed while registering its components: " + e.what());
     }
     reg.setCurrentPlugin("", "");
     m_plugins.push_back(LoadedPlugin{id, info->version ? info->version : "", info->description ? info->description : "",

@@ -254,7 +254,7 @@ ElementSpec parseSceneFile(const std::string& path) {
 
 ElementSpec parseSceneString(const std::string& xml, const std::string& virtualName, const std::string& baseDir) {
     std::string name = virtualName;
-    if (baseDir != "." && !baseDir.empty() && (name.empty() || name[0] != '<')) name = (fs::path(baseDir) / name).string();
+    if (baseDir != "." && !baseDir.empty()) name = (fs::path(baseDir) / name).string();
     std::vector<std::string> stack{name};
     return parseDocument(xml, name, stack);
 }

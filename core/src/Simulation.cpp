@@ -65,6 +65,9 @@ struct InitOrder {
             if (auto* t = dynamic_cast<Component*>(p->linkTarget())) run(t);
         for (Component* d : c->dependencies()) run(d);
         active.erase(c);
+        // a value that came through a data link is known only now: check its range
+        for (BaseParam* p : c->params())
+            if (p->linkTarget() && !p->isComponentLink()) p->checkValue();
         c->init();
         SceneInit::markInitialised(*c);
         done.insert(c);

@@ -5,6 +5,11 @@
 namespace fascia::meshio {
 
 namespace {
+/// (1-t) lo + t hi with t = i/n: exact at both ends, so faces sit exactly on the box.
+double lerp(double lo, double hi, int i, int n) {
+    const double t = double(i) / n;
+    return (1 - t) * lo + t * hi;
+}
 double signedVolume(const Positions& p, const std::array<int, 4>& t) {
     return (p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])) / 6.0;
 }
@@ -18,7 +23,7 @@ MeshData makeGrid(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz, const 
     for (int k = 0; k < sz; ++k)
         for (int j = 0; j < sy; ++j)
             for (int i = 0; i < sx; ++i)
-                m.points[id(i, j, k)] = lo + Vec3((hi[0] - lo[0]) * i / nx, (hi[1] - lo[1]) * j / ny, (hi[2] - lo[2]) * k / nz);
+                m.points[id(i, j, k)] = Vec3(lerp(lo[0], hi[0], i, nx), lerp(lo[1], hi[1], j, ny), lerp(lo[2], hi[2], k, nz));
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {

@@ -4,6 +4,8 @@
 #include "BoxROI.h"
 #include "GridMesh.h"
 #include "MeshLoader.h"
+#include "Monitor.h"
+#include "VTKExporter.h"
 
 using namespace fascia::meshio;
 
@@ -11,6 +13,8 @@ static void registerMeshio(fascia::core::Registry& r) {
     r.add<MeshLoader>("MeshLoader", "reads a volume mesh: Gmsh .msh (1, 2.2, 4.1), VTK .vtk/.vtu, TetGen .node/.ele");
     r.add<GridMesh>("GridMesh", "a box split into hexahedra or tetrahedra, with its six faces as node groups");
     r.add<BoxROI>("BoxROI", "the nodes and elements inside a box, as index lists");
+    r.add<VTKExporter>("VTKExporter", "ParaView time series (.pvd + .vtu): displacement, velocity, force, cell data");
+    r.add<Monitor>("Monitor", "CSV of node positions/displacements/velocities, reaction forces and element quantities");
 }
 
 FASCIA_PLUGIN("fascia.meshio", "0.1.0", "mesh loaders, generated meshes, regions, exporters and monitors", registerMeshio)

@@ -1,6 +1,6 @@
 #pragma once
 /// Value types shared by every plugin: links between components carry these.
-#include <Eigen/Core>
+#include <Eigen/Dense>  // Core alone declares cross() and determinant() without defining them
 #include <array>
 #include <map>
 #include <string>

@@ -1,0 +1,130 @@
+#include "Monitor.h"
+#include "fascia/scene/Node.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace fascia::meshio {
+
+namespace {
+const char* axis[3] = {"x", "y", "z"};
+const char* tensorSuffix6[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+} // namespace
+
+void Monitor::init() {
+    m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
+    if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
+    for (int i : m_indices.get())
+        if (size_t(i) >= m_st->size())
+            fail(m_indices, "node index " + std::to_string(i) + " is out of range: the state '" + m_st->name() + "' has " +
+                                std::to_string(m_st->size()) + " nodes");
+    m_ff = m_forceField.get();
+    if (!m_ff && m_elements.isSet())
+        for (const core::Node* n = node(); n && !m_ff; n = n->parent())
+            for (auto* ff : n->findAllLocal<core::BaseForceField>())
+                if (ff->elementCount() > 0) {
+                    m_ff = ff;
+                    break;
+                }
+    if (m_elements.isSet() && !m_ff) fail(m_elements, "elements are given but no element force field is in the context");
+    m_cellFields.clear();
+    if (m_ff && m_elements.isSet()) {
+        for (int e : m_elements.get())
+            if (size_t(e) >= m_ff->elementCount())
+                fail(m_elements, "element index " + std::to_string(e) + " is out of range: '" + m_ff->name() + "' has " +
+                                     std::to_string(m_ff->elementCount()) + " elements");
+        std::vector<core::CellField> fields;
+        m_ff->cellData(*m_st, fields);
+        std::vector<std::string> wanted;
+        std::istringstream ws(m_elementFields.get());
+        for (std::string w; ws >> w;) wanted.push_back(w);
+        std::vector<std::string> offered;
+        for (auto& f : fields) offered.push_back(f.name);
+        for (auto& w : wanted)
+            if (std::find(offered.begin(), offered.end(), w) == offered.end()) {
+                std::string all;
+                for (auto& o : offered) all += (all.empty() ? "" : ", ") + o;
+                fail(m_elementFields, "'" + m_ff->name() + "' offers no element quantity '" + w + "'", {"it offers: " + all});
+            }
+        for (auto& f : fields)
+            if (wanted.empty() || std::find(wanted.begin(), wanted.end(), f.name) != wanted.end())
+                m_cellFields.emplace_back(f.name, f.components);
+    }
+
+    // header row with units
+    std::ostringstream h;
+    h << "time [s]";
+    for (int i : m_indices.get()) {
+        auto vec = [&](const char* q, const char* unit) {
+            for (int a = 0; a < 3; ++a) h << "," << q << i << "_" << axis[a] << " [" << unit << "]";
+        };
+        if (m_positions.get()) vec("x", "m");
+        if (m_displacements.get()) vec("u", "m");
+        if (m_velocities.get()) vec("v", "m/s");
+    }
+    if (m_reactionOf.get())
+        for (int a = 0; a < 3; ++a) h << ",reaction_" << axis[a] << " [N]";
+    std::vector<core::CellField> fields;
+    if (!m_cellFields.empty()) m_ff->cellData(*m_st, fields);
+    for (int e : m_elements.get())
+        for (auto& [name, comps] : m_cellFields) {
+            std::string unit = "-";
+            for (auto& f : fields)
+                if (f.name == name && !f.unit.empty()) unit = f.unit;
+            for (int c = 0; c < comps; ++c) {
+                h << "," << name << "[" << e << "]";
+                if (comps == 6) h << "_" << tensorSuffix6[c];
+                else if (comps == 3) h << "_" << axis[c];
+                else if (comps > 1) h << "_" << c;
+                h << " [" << unit << "]";
+            }
+        }
+
+    const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
+    m_path = (fs::path(node()->context().outputDir) / file).string();
+    std::error_code ec;
+    fs::create_directories(fs::path(m_path).parent_path(), ec);
+    m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
+    if (!*m_out) fail(m_filename, "cannot write '" + m_path + "'");
+    *m_out << h.str() << "\n";
+    m_out->precision(12);
+}
+
+void Monitor::observe(double t, long step) {
+    if (!m_out || step % m_every.get() != 0) return;
+    std::ostringstream row;
+    row.precision(12);
+    row << t;
+    for (int i : m_indices.get()) {
+        auto vec = [&](const Vec3& v) { row << "," << v[0] << "," << v[1] << "," << v[2]; };
+        if (m_positions.get()) vec(m_st->x()[i]);
+        if (m_displacements.get()) vec(m_st->x()[i] - m_st->x0()[i]);
+        if (m_velocities.get()) vec(m_st->v()[i]);
+    }
+    if (auto* c = m_reactionOf.get()) {
+        Vec3 sum = Vec3::Zero();
+        for (int i : c->constrainedNodes()) sum += m_st->reaction()[i];
+        row << "," << sum[0] << "," << sum[1] << "," << sum[2];
+    }
+    if (!m_cellFields.empty()) {
+        std::vector<core::CellField> fields;
+        m_ff->cellData(*m_st, fields);
+        for (int e : m_elements.get())
+            for (auto& [name, comps] : m_cellFields)
+                for (auto& f : fields)
+                    if (f.name == name)
+                        for (int c = 0; c < comps; ++c) row << "," << f.values[size_t(e) * comps + c];
+    }
+    row << "\n";
+    *m_out << row.str();  // whole rows only
+    m_out->flush();
+}
+
+void Monitor::cleanup() {
+    if (m_out) m_out->close();
+}
+
+} // namespace fascia::meshio

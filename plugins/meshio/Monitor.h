@@ -1,0 +1,38 @@
+#pragma once
+#include "fascia/sim/Mechanics.h"
+
+#include <fstream>
+#include <memory>
+
+namespace fascia::meshio {
+
+/// A CSV of chosen nodes' positions, displacements and velocities, the summed reaction force on a
+/// constraint's nodes, and element quantities the force field provides. The first row names every
+/// column with its unit: `time [s],u12_x [m],...`.
+class Monitor : public core::BaseObserver {
+public:
+    void init() override;
+    void observe(double t, long step) override;
+    void cleanup() override;
+
+    core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("CSV file, relative to the output folder (default: <name>.csv)")};
+    core::Param<IndexList> m_indices{this, core::ParamSpec("indices").help("nodes to record (inline or linked, e.g. \"@box.indices\")")};
+    core::Param<bool> m_positions{this, core::ParamSpec("positions").help("record positions"), false};
+    core::Param<bool> m_displacements{this, core::ParamSpec("displacements").help("record displacements"), true};
+    core::Param<bool> m_velocities{this, core::ParamSpec("velocities").help("record velocities"), false};
+    core::Link<core::BaseConstraint> m_reactionOf{this, core::ParamSpec("reactionOf").help("a constraint whose nodes' reaction forces are summed, e.g. \"@fixed\"")};
+    core::Param<IndexList> m_elements{this, core::ParamSpec("elements").help("elements to record the force field's element quantities of")};
+    core::Param<std::string> m_elementFields{this, core::ParamSpec("elementFields").help("names of the element quantities, space separated (e.g. \"J vonMises\"); default: all the force field offers")};
+    core::Link<core::BaseForceField> m_forceField{this, core::ParamSpec("forceField").help("the force field giving element quantities (default: the first element force field in the context)")};
+    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("record every N steps"), 1};
+    core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to record (default: the one in the context)")};
+
+private:
+    core::BaseMechanicalState* m_st = nullptr;
+    core::BaseForceField* m_ff = nullptr;
+    std::vector<std::pair<std::string, int>> m_cellFields;  ///< (name, components)
+    std::unique_ptr<std::ofstream> m_out;
+    std::string m_path;
+};
+
+} // namespace fascia::meshio

@@ -1,0 +1,35 @@
+#pragma once
+#include "fascia/sim/Mechanics.h"
+
+#include <vector>
+
+namespace fascia::meshio {
+
+/// Writes a ParaView time series: <outputDir>/<filename>.pvd plus one .vtu per output step, with
+/// point data displacement, velocity and force, and the cell data the force fields in its context
+/// provide (J, stresses ...). Each file is written under a temporary name and renamed, so a run
+/// killed at any moment leaves only complete files (and the .pvd lists only those).
+class VTKExporter : public core::BaseObserver {
+public:
+    void init() override;
+    void observe(double t, long step) override;
+    void cleanup() override {}
+
+    core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("base name of the files, relative to the output folder (default: the component's name)")};
+    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write every N steps (the initial state is always written)"), 1};
+    core::Param<bool> m_cellData{this, core::ParamSpec("cellData").help("write the force fields' per-element data (J, stresses)"), true};
+    core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to write (default: the one in the context)")};
+
+private:
+    void writeStep(double t, long step);
+    void writeCollection();
+    core::BaseMechanicalState* m_st = nullptr;
+    std::vector<core::BaseForceField*> m_forceFields;
+    std::vector<std::pair<double, std::string>> m_written;  ///< (time, file name) in the .pvd
+    std::string m_base;
+};
+
+/// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).
+void writeFileAtomically(const std::string& path, const std::string& text);
+
+} // namespace fascia::meshio

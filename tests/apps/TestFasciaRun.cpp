@@ -1,0 +1,316 @@
+/// fascia-run end to end: exit codes (0 good, 1 bad command line, 2 bad scene, 3 failed run), the
+/// summary line, and the options.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+const std::string kGoodPlugin = std::string(TEST_PLUGIN_DIR) + "/good/libfascia_testplugin.so";
+
+/// A temporary folder holding the scenes and the captured output of one test.
+class Workspace {
+public:
+    Workspace() {
+        std::string tmpl = (fs::temp_directory_path() / "fascia-run-test-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        m_dir = fs::canonical(tmpl);
+    }
+    ~Workspace() {
+        std::error_code ec;
+        fs::remove_all(m_dir, ec);
+    }
+    const fs::path& dir() const { return m_dir; }
+    std::string write(const std::string& name, const std::string& text) const {
+        const fs::path p = m_dir / name;
+        fs::create_directories(p.parent_path());
+        std::ofstream(p) << text;
+        return p.string();
+    }
+
+    struct Result {
+        int code = -1;
+        std::string out, err;
+        /// The summary line ("fascia-run: N steps, ..."), empty when there is none.
+        std::string summary() const {
+            std::istringstream in(out);
+            for (std::string line; std::getline(in, line);)
+                if (line.rfind("fascia-run: ", 0) == 0) return line;
+            return {};
+        }
+        std::string firstErrLine() const { return err.substr(0, err.find('\n')); }
+    };
+
+    /// Runs fascia-run with args (shell words) and optional environment assignments.
+    Result run(const std::string& args, const std::string& env = "") const {
+        const std::string out = (m_dir / "stdout.txt").string(), err = (m_dir / "stderr.txt").string();
+        const std::string cmd = "cd '" + m_dir.string() + "' && " + env + " '" FASCIA_RUN "' " + args + " >'" + out +
+                                "' 2>'" + err + "' </dev/null";
+        const int status = std::system(cmd.c_str());
+        Result r;
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+
+private:
+    static std::string slurp(const std::string& f) {
+        std::ifstream in(f);
+        std::ostringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    }
+    fs::path m_dir;
+};
+
+/// A one-body scene of the test plugin's components.
+std::string scene(const std::string& rootAttrs, const std::string& nanAttrs = "", const std::string& extra = "") {
+    return R"(<Node name="root" )" + rootAttrs + R"(>
+  <RequiredPlugin name=")" + kGoodPlugin + R"("/>
+  <TestCounter name="counter" label="a"/>
+  <Node name="body">
+    <TestEuler name="euler"/>
+    <TestState name="state" position="0 0 0  1 0 0"/>
+    <TestMass name="mass" mass="2"/>
+    <TestNaN name="nan" )" + nanAttrs + R"(/>
+  </Node>)" + extra + R"(
+</Node>
+)";
+}
+
+/// Parses the summary line; false when it does not have the documented shape.
+struct Summary {
+    long steps = -1;
+    double simulated = -1, wall = -1, msPerStep = -1, factor = -1;
+};
+bool parseSummary(const std::string& line, Summary& s) {
+    static const std::regex re(
+        R"(fascia-run: (\d+) steps, ([-+0-9.eE]+) s simulated, ([0-9.eE+-]+) s wall, ([0-9.eE+-]+) ms/step, real-time factor ([0-9.eE+-]+|inf|nan))");
+    std::smatch m;
+    if (!std::regex_match(line, m, re)) return false;
+    s.steps = std::stol(m[1]);
+    s.simulated = std::stod(m[2]);
+    s.wall = std::stod(m[3]);
+    s.msPerStep = std::stod(m[4]);
+    s.factor = m[5] == "inf" || m[5] == "nan" ? -1 : std::stod(m[5]);
+    return true;
+}
+
+} // namespace
+
+TEST_CASE("fascia-run runs a good scene and prints the summary line", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --steps 10");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    Summary s;
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.steps == 10);
+    CHECK(s.simulated == Approx(0.1));
+    CHECK(s.wall >= 0);
+    CHECK(s.msPerStep == Approx(1e3 * s.wall / 10).margin(1e-3));
+    CHECK(r.err.empty());  // not a terminal: no progress bar
+}
+
+TEST_CASE("fascia-run --time runs ceil(T/dt) steps", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --time 0.05");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    Summary s;
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.steps == 5);
+    CHECK(s.simulated == Approx(0.05));
+    auto r2 = w.run("good.xml --time 0.041");
+    REQUIRE(parseSummary(r2.summary(), s));
+    CHECK(s.steps == 5);
+}
+
+TEST_CASE("fascia-run without --steps or --time runs to the root's endTime, else 100 steps", "[fascia-run]") {
+    Workspace w;
+    w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.03\""));
+    w.write("noend.xml", scene("dt=\"0.01\""));
+    Summary s;
+    auto r = w.run("end.xml");
+    INFO(r.out << r.err);
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.steps == 3);
+    auto r2 = w.run("noend.xml");
+    REQUIRE(parseSummary(r2.summary(), s));
+    CHECK(s.steps == 100);
+    CHECK(s.simulated == Approx(1.0));
+}
+
+TEST_CASE("fascia-run --dt overrides the scene's time step", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --dt 0.02 --steps 3");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    Summary s;
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.simulated == Approx(0.06));
+    // a scene without dt runs with --dt, and fails without it
+    w.write("nodt.xml", scene(""));
+    CHECK(w.run("nodt.xml --dt 0.5 --steps 2").code == 0);
+    auto bad = w.run("nodt.xml --steps 2");
+    CHECK(bad.code == 2);
+    CHECK_THAT(bad.err, Contains("no time step"));
+}
+
+TEST_CASE("fascia-run --quiet still prints the summary", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --steps 4 --quiet");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    Summary s;
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.steps == 4);
+    CHECK(r.err.empty());
+}
+
+TEST_CASE("fascia-run --steps 0 initialises and stops", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --steps 0");
+    CHECK(r.code == 0);
+    Summary s;
+    REQUIRE(parseSummary(r.summary(), s));
+    CHECK(s.steps == 0);
+    CHECK(s.simulated == 0);
+}
+
+TEST_CASE("fascia-run --output creates the folder; --threads is accepted", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --steps 2 --threads 1 --output out/deep");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK(fs::is_directory(w.dir() / "out" / "deep"));
+}
+
+TEST_CASE("fascia-run exits 2 on a bad scene with the located error on stderr", "[fascia-run]") {
+    Workspace w;
+    SECTION("a value out of range") {
+        const std::string f = w.write("bad.xml", scene("dt=\"0.01\"", "", R"(
+  <TestCounter name="c" label="b" scale="12"/>)"));
+        auto r = w.run("bad.xml --steps 3");
+        CHECK(r.code == 2);
+        CHECK(r.firstErrLine() == "bad.xml:10: error: TestCounter 'c': scale = 12 is outside [0, 10)");
+        CHECK(r.summary().empty());
+    }
+    SECTION("an unknown component, with a suggestion") {
+        w.write("bad.xml", scene("dt=\"0.01\"", "", R"(
+  <TestCountr name="c" label="b"/>)"));
+        auto r = w.run("bad.xml --steps 3");
+        CHECK(r.code == 2);
+        CHECK(r.firstErrLine() == "bad.xml:10: error: unknown component 'TestCountr'");
+        CHECK_THAT(r.err, Contains("bad.xml:10: note: did you mean 'TestCounter'?"));
+    }
+    SECTION("an XML syntax error") {
+        w.write("bad.xml", "<Node name=\"root\">\n  <TestCounter label=x/>\n</Node>\n");
+        auto r = w.run("bad.xml");
+        CHECK(r.code == 2);
+        CHECK(r.firstErrLine() == "bad.xml:2: error: XML syntax error: malformed attribute (missing quotes or '=')");
+    }
+    SECTION("a missing scene file") {
+        auto r = w.run("missing.xml");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, Contains("missing.xml"));
+        CHECK_THAT(r.err, Contains("no such file"));
+    }
+    SECTION("a missing plugin") {
+        w.write("bad.xml", "<Node name=\"root\" dt=\"0.1\">\n  <RequiredPlugin name=\"fascia_nosuchplugin\"/>\n</Node>\n");
+        auto r = w.run("bad.xml");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.firstErrLine(), StartsWith("bad.xml:2: error: plugin 'fascia_nosuchplugin' not found"));
+    }
+}
+
+TEST_CASE("fascia-run exits 3 when the simulation fails, naming the step and the component", "[fascia-run]") {
+    Workspace w;
+    w.write("nan.xml", scene("dt=\"0.01\"", "nanAtStep=\"3\""));
+    auto r = w.run("nan.xml --steps 10");
+    INFO(r.out << r.err);
+    CHECK(r.code == 3);
+    CHECK_THAT(r.err, Contains("step 3"));
+    CHECK_THAT(r.err, Contains("/root/body/nan"));
+    CHECK(r.summary().empty());
+}
+
+TEST_CASE("fascia-run exits 1 on a bad command line", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    for (const char* args : {"good.xml --steps 3 --time 1", "good.xml --bogus", "good.xml --steps", "good.xml --steps -2",
+                             "good.xml --dt 0", "good.xml --dt abc", "", "good.xml other.xml"}) {
+        CAPTURE(args);
+        auto r = w.run(args);
+        CHECK(r.code == 1);
+        CHECK_THAT(r.err, StartsWith("fascia-run: "));
+        CHECK(r.summary().empty());
+    }
+}
+
+TEST_CASE("fascia-run --help prints the usage and the exit codes", "[fascia-run]") {
+    Workspace w;
+    auto r = w.run("--help");
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Contains("usage:"));
+    CHECK_THAT(r.out, Contains("--steps N"));
+    CHECK_THAT(r.out, Contains("--describe"));
+    CHECK_THAT(r.out, Contains("exit codes"));
+}
+
+TEST_CASE("fascia-run --list prints every component with its plugin", "[fascia-run]") {
+    Workspace w;
+    const std::string env = "FASCIA_PLUGIN_PATH='" + std::string(TEST_PLUGIN_DIR) + "/good'";
+    auto r = w.run("--list", env);
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK(std::regex_search(r.out, std::regex(R"((^|\n)TestCounter +fascia\.test +counts beginStep and observe calls)")));
+    CHECK(std::regex_search(r.out, std::regex(R"((^|\n)TestNaN +fascia\.test +)")));
+}
+
+TEST_CASE("fascia-run --describe prints a component's parameters", "[fascia-run]") {
+    Workspace w;
+    const std::string env = "FASCIA_PLUGIN_PATH='" + std::string(TEST_PLUGIN_DIR) + "/good'";
+    auto r = w.run("--describe TestCounter", env);
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, StartsWith("TestCounter (plugin fascia.test): counts beginStep and observe calls"));
+    CHECK_THAT(r.out, Contains("scale  [double, m] default: 1  range: [0, 10)"));
+    CHECK_THAT(r.out, Contains("a length in [0, 10)"));
+    CHECK_THAT(r.out, Contains("mode  [string] default: fast  range: one of fast|accurate|debug"));
+    CHECK_THAT(r.out, Contains("label  [string] required"));
+    CHECK_THAT(r.out, Contains("beginSteps  [int] output"));
+    CHECK_THAT(r.out, Contains("partner  [link to TestCounter]"));
+
+    auto bad = w.run("--describe TestCountr", env);
+    CHECK(bad.code == 2);
+    CHECK_THAT(bad.err, Contains("did you mean 'TestCounter'?"));
+}
+
+TEST_CASE("fascia-run --timers prints the time of each component", "[fascia-run]") {
+    Workspace w;
+    w.write("good.xml", scene("dt=\"0.01\""));
+    auto r = w.run("good.xml --steps 3 --timers");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK(std::regex_search(r.out, std::regex(R"(/root/body/euler +TestEuler +[0-9.]+ +3\b)")));
+}
