@@ -3,7 +3,7 @@
 #   make test   the same set-up, then every test through ctest (non-zero exit on any failure)
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-SCENE ?= scenes/default.xml
+SCENE ?= scenes/heml/abdomen.xml
 DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 libvtk9-dev
 
 .PHONY: deps configure build run test bench install clean
@@ -25,7 +25,7 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 run: build
-	$(BUILD_DIR)/bin/fascia-run $(SCENE)
+	$(BUILD_DIR)/bin/fascia-run $(SCENE) --output $(BUILD_DIR)/output
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

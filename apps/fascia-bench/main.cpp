@@ -28,6 +28,8 @@ usage:
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
                [--viscous] [--determinism]
   fascia-bench --suite [--steps N] [--repeat R]
+  fascia-bench --overhead N [--steps N] [--repeat R]
+  fascia-bench --load SCENE.xml [--repeat R]
 
   --forcefield    HEML (default) or TLED
   --material      a material component: CompressibleNeoHookean (default), StVenantKirchhoff,
@@ -40,6 +42,9 @@ usage:
   --viscous       add a one-term ViscoelasticProny to the force field's node
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --suite         the standard set of docs/performance.md
+  --overhead N    per-step cost of the framework: a one-node scene with N trivial components
+                  (ConstantForce) against the same scene with none
+  --load SCENE    time to parse, build and initialise a scene (ms), median of the repeats
 
 Each case prints one JSON object: forcefield, material, mesh, elements, nodes, threads, precision,
 steps, ms_per_step (median), ms_min, ms_max, ns_per_element_step.
@@ -142,6 +147,56 @@ void runCase(const Case& c) {
     std::fflush(stdout);
 }
 
+void runOverhead(int components, int steps, int repeat) {
+    auto scene = [](int n) {
+        std::ostringstream s;
+        s << "<Node name=\"root\" dt=\"1e-3\">\n  <SemiImplicitEuler/>\n"
+          << "  <MechanicalObject name=\"state\" position=\"0 0 0\"/>\n  <LumpedMass totalMass=\"1\"/>\n";
+        for (int i = 0; i < n; ++i) s << "  <ConstantForce indices=\"0\" force=\"0 0 1e-9\"/>\n";
+        s << "</Node>\n";
+        return s.str();
+    };
+    std::vector<double> base, with;
+    auto a = Simulation::fromString(scene(0), "<bench>");
+    auto b = Simulation::fromString(scene(components), "<bench>");
+    a->run(100);
+    b->run(100);
+    for (int r = 0; r < repeat; ++r) {
+        for (auto* pair : {&base, &with}) {
+            Simulation& sim = pair == &base ? *a : *b;
+            const auto t0 = std::chrono::steady_clock::now();
+            sim.run(steps);
+            pair->push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / steps);
+        }
+    }
+    std::sort(base.begin(), base.end());
+    std::sort(with.begin(), with.end());
+    const double mb = base[base.size() / 2], mw = with[with.size() / 2];
+    std::printf("{\"case\": \"overhead\", \"components\": %d, \"steps\": %d, \"us_per_step_without\": %.4f, "
+                "\"us_per_step_with\": %.4f, \"ns_per_component_step\": %.2f}\n",
+                components, steps, mb, mw, (mw - mb) * 1e3 / components);
+}
+
+void runLoad(const std::string& scene, int repeat) {
+    std::vector<double> ms;
+    size_t nodes = 0, elements = 0;
+    for (int r = 0; r < repeat; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        auto sim = Simulation::fromFile(scene);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        nodes = 0;
+        elements = 0;
+        for (auto& g : sim->groups()) {
+            nodes += g.state->size();
+            for (auto* ff : g.forceFields) elements += ff->elementCount();
+        }
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf("{\"case\": \"load\", \"scene\": \"%s\", \"nodes\": %zu, \"elements\": %zu, \"load_ms\": %.2f, "
+                "\"load_ms_min\": %.2f, \"load_ms_max\": %.2f}\n",
+                scene.c_str(), nodes, elements, ms[ms.size() / 2], ms.front(), ms.back());
+}
+
 int parseInt(const char* v, const char* opt) {
     if (!v) {
         std::cerr << "fascia-bench: " << opt << " needs a value\n";
@@ -161,6 +216,8 @@ int parseInt(const char* v, const char* opt) {
 int main(int argc, char** argv) {
     Case c;
     bool suite = false;
+    int overhead = 0;
+    std::string load;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -186,6 +243,8 @@ int main(int argc, char** argv) {
         else if (a == "--viscous") c.viscous = true;
         else if (a == "--determinism") c.determinism = true;
         else if (a == "--suite") suite = true;
+        else if (a == "--overhead") overhead = parseInt(next(), "--overhead");
+        else if (a == "--load") load = str("--load");
         else {
             std::cerr << "fascia-bench: unknown option '" << a << "' (see --help)\n";
             return 1;
@@ -196,6 +255,14 @@ int main(int argc, char** argv) {
         return 1;
     }
     try {
+        if (overhead > 0) {
+            runOverhead(overhead, c.steps, c.repeat);
+            return 0;
+        }
+        if (!load.empty()) {
+            runLoad(load, c.repeat);
+            return 0;
+        }
         if (!suite) {
             if (c.mesh.empty() && c.cube == 0) c.cube = 16;
             runCase(c);

@@ -17,16 +17,23 @@ cmake --build "$work/example" -j 2 > "$work/build.log" 2>&1 || { cat "$work/buil
 lib="$work/example/libfascia_example.so"
 [ -f "$lib" ] || fail "the example plugin was not built"
 
+# the plugin's own conformance program: its force field and its material (in HEML and TLED)
+"$work/example/example_conformance" || fail "the example's conformance checks"
+
 # the installed runner finds its own plugins, and the example through FASCIA_PLUGIN_PATH
 list=$(FASCIA_PLUGIN_PATH="$work/example" "$work/prefix/bin/fascia-run" --list)
-echo "$list" | grep -q "^ViscousDrag .*example.drag" || { echo "$list"; fail "--list does not show ViscousDrag"; }
+for c in CorotationalTetForceField Yeoh; do
+  echo "$list" | grep -q "^$c .*example.plugin" || { echo "$list"; fail "--list does not show $c"; }
+done
 echo "$list" | grep -q "^SemiImplicitEuler " || fail "--list does not show the installed built-in plugins"
 
-out=$(FASCIA_PLUGIN_PATH="$work/example" "$work/prefix/bin/fascia-run" "$src/examples/plugin/scene.xml" --steps 100 --quiet)
-echo "$out" | grep -q "^fascia-run: 100 steps" || { echo "$out"; fail "the example scene did not run"; }
+for scene in corotational yeoh; do
+  out=$(FASCIA_PLUGIN_PATH="$work/example" "$work/prefix/bin/fascia-run" "$src/examples/plugin/$scene.xml" --steps 200 --quiet)
+  echo "$out" | grep -q "^fascia-run: 200 steps" || { echo "$out"; fail "the example scene $scene did not run"; }
+done
 
 # and by <RequiredPlugin> with a path, without the environment variable
-sed "s|<SemiImplicitEuler/>|<RequiredPlugin name=\"$lib\"/><SemiImplicitEuler/>|" "$src/examples/plugin/scene.xml" > "$work/scene.xml"
+sed "s|<Node name=\"beam\">|<RequiredPlugin name=\"$lib\"/><Node name=\"beam\">|" "$src/examples/plugin/corotational.xml" > "$work/scene.xml"
 out=$("$work/prefix/bin/fascia-run" "$work/scene.xml" --steps 10 --quiet)
 echo "$out" | grep -q "^fascia-run: 10 steps" || { echo "$out"; fail "RequiredPlugin by path"; }
-echo "install, out-of-tree build and run: ok"
+echo "install, out-of-tree build, conformance and run: ok"

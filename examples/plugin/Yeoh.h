@@ -1,0 +1,40 @@
+#pragma once
+/// A material of a user's own: written once against the shared invariant-based interface, it runs
+/// in HEMLForceField and TLEDForceField alike, without touching either.
+#include "fascia/materials/Laws.h"
+
+namespace example {
+
+/// Yeoh: W = C10 (I1bar - 3) + C20 (I1bar - 3)^2 + C30 (I1bar - 3)^3 + kappa/2 (J - 1)^2.
+struct YeohLaw {
+    static constexpr unsigned uses = 0;
+    double C10 = 0, C20 = 0, C30 = 0, kappa = 0;
+    bool stressFreeAtRest() const { return true; }
+    void isochoric(const fascia::materials::Invariants& in, fascia::materials::Response& r) const {
+        const double t = fascia::materials::invCbrt(in.J), t2 = t * t;  // J^(-1/3), J^(-2/3)
+        const double x = in.I1 * t2 - 3.0;
+        const double dWdI1bar = C10 + x * (2 * C20 + 3 * C30 * x);
+        r.W += x * (C10 + x * (C20 + C30 * x));
+        r.dI1 += dWdI1bar * t2;
+        r.dJiso += dWdI1bar * in.I1 * (-2.0 / 3.0) * t2 * t2 * t;  // d(I1 J^-2/3)/dJ = -2/3 I1 J^-5/3
+    }
+    void volumetric(double J, double& W, double& dW, double& d2W) const {
+        W = 0.5 * kappa * (J - 1) * (J - 1);
+        dW = kappa * (J - 1);
+        d2W = kappa;
+    }
+};
+
+class Yeoh : public fascia::materials::Material<YeohLaw> {
+public:
+    void init() override;
+    double shearModulus() const override { return 2 * m_law.C10; }
+    double bulkModulus() const override { return m_law.kappa; }
+
+    fascia::core::Param<double> m_C10{this, fascia::core::ParamSpec("C10").unit("Pa").above(0).required().help("first coefficient (initial shear modulus / 2)")};
+    fascia::core::Param<double> m_C20{this, fascia::core::ParamSpec("C20").unit("Pa").help("second coefficient"), 0.0};
+    fascia::core::Param<double> m_C30{this, fascia::core::ParamSpec("C30").unit("Pa").help("third coefficient"), 0.0};
+    fascia::core::Param<double> m_kappa{this, fascia::core::ParamSpec("kappa").unit("Pa").above(0).required().help("bulk modulus of kappa/2 (J - 1)^2")};
+};
+
+} // namespace example
