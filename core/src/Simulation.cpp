@@ -177,10 +177,15 @@ void Simulation::setDt(double dt) {
     m_dt = dt;
     m_root->context().dt = dt;
     {
-        const double crit = criticalTimeStep();
+        double crit = std::numeric_limits<double>::infinity();
+        const BaseForceField* limiting = nullptr;
+        for (auto& g : m_groups)
+            for (auto* ff : g.forceFields)
+                if (double c = ff->stableTimeStep(*g.state); c < crit) crit = c, limiting = ff;
         if (dt > crit)
             m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
-                         " s of the force fields: the explicit integration will likely be unstable");
+                         " s of " + limiting->className() + " '" + limiting->path() +
+                         "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
         for (Component* c : m_all) c->dtChanged(dt);
     }
 }

@@ -9,6 +9,7 @@
 #include "MechanicalObject.h"
 #include "PrescribedDisplacement.h"
 #include "SemiImplicitEuler.h"
+#include "SurfacePressure.h"
 
 using namespace fascia::mechanics;
 
@@ -21,6 +22,7 @@ static void registerMechanics(fascia::core::Registry& r) {
     r.add<FixedConstraint>("FixedConstraint", "fixes nodes in all or some directions (rollers, symmetry planes)");
     r.add<PrescribedDisplacement>("PrescribedDisplacement", "nodes follow a displacement times a load shape over time");
     r.add<ConstantForce>("ConstantForce", "a constant force on nodes");
+    r.add<SurfacePressure>("SurfacePressure", "a follower pressure on boundary triangles");
 }
 
 FASCIA_PLUGIN("fascia.mechanics", "0.1.0", "state, mass, integrators, constraints and loads", registerMechanics)

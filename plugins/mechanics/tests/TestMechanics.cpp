@@ -1,4 +1,5 @@
 // Mechanics: free fall, constraints, prescribed motion, damping, parameter checks.
+#include "SurfacePressure.h"
 #include "fascia/sim/Simulation.h"
 
 #include <catch2/catch.hpp>
@@ -8,6 +9,7 @@
 
 using fascia::core::Error;
 using fascia::core::Simulation;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -192,4 +194,34 @@ TEST_CASE("mechanics parameters are checked with located errors", "[MechanicalOb
         CHECK_THAT(errorOf("<Node name=\"root\" dt=\"0.1\">\n  <LumpedMass totalMass=\"1\"/>\n</Node>\n"),
                    Contains("scene.xml:2:") && Contains("no MechanicalObject"));
     }
+}
+
+TEST_CASE("surface pressure gives -p A n on a face and nothing net on a closed surface", "[SurfacePressure]") {
+    auto scene = [](const std::string& pressure) {
+        return "<Node name=\"root\" dt=\"0.001\">\n"
+               "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.2 0.1 0.3\" resolution=\"3 2 4\"/>\n"
+               "  <MechanicalObject name=\"state\"/>\n"
+               "  <LumpedMass density=\"1000\"/>\n"
+               "  <SemiImplicitEuler/>\n  " + pressure + "\n</Node>\n";
+    };
+    auto total = [](Simulation& sim, const char* name) {
+        auto* ff = dynamic_cast<fascia::core::BaseForceField*>(sim.find(name));
+        auto& st = sim.state("state");
+        fascia::Positions f(st.size(), fascia::Vec3::Zero());
+        ff->addForce(st, f, 0.0);
+        fascia::Vec3 sum = fascia::Vec3::Zero();
+        for (auto& v : f) sum += v;
+        return sum;
+    };
+    auto top = Simulation::fromString(scene("<SurfacePressure name=\"p\" pressure=\"1000\" nodeGroup=\"zmax\"/>"));
+    const fascia::Vec3 ft = total(*top, "p");
+    CHECK(ft[2] == Approx(-1000 * 0.2 * 0.1).epsilon(1e-12));
+    CHECK(std::abs(ft[0]) + std::abs(ft[1]) < 1e-12);
+    auto side = Simulation::fromString(scene("<SurfacePressure name=\"p\" pressure=\"1000\" nodeGroup=\"xmin\"/>"));
+    CHECK(total(*side, "p")[0] == Approx(1000 * 0.1 * 0.3).epsilon(1e-12));  // outward normal -x, pushes +x
+    auto all = Simulation::fromString(scene("<SurfacePressure name=\"p\" pressure=\"1000\"/>"));
+    CHECK(total(*all, "p").norm() < 1e-12);
+    CHECK(dynamic_cast<fascia::mechanics::SurfacePressure*>(all->find("p"))->triangleCount() == 2 * 2 * (3 * 2 + 2 * 4 + 3 * 4));
+    CHECK_THAT(errorOf(scene("<SurfacePressure pressure=\"1\" nodeGroup=\"top\"/>")),
+               Contains("scene.xml:6:") && Contains("no node group 'top'"));
 }
