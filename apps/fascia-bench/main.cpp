@@ -182,7 +182,9 @@ void runLoad(const std::string& scene, int repeat) {
     size_t nodes = 0, elements = 0;
     for (int r = 0; r < repeat; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        auto sim = Simulation::fromFile(scene);
+        LoadOptions opts;
+        opts.outputDir = (fs::temp_directory_path() / "fascia-bench-load").string();  // exporters write there
+        auto sim = Simulation::fromFile(scene, opts);
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         nodes = 0;
         elements = 0;

@@ -176,6 +176,7 @@ int main(int argc, char** argv) {
         if (!describeName.empty()) return describe(describeName);
         if (scene.empty()) usage("no scene given");
         if (threads > 0) omp_set_num_threads(threads);
+        setTimersEnabled(timers);
 
         LoadOptions opts;
         opts.outputDir = output;

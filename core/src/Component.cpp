@@ -8,6 +8,12 @@
 
 namespace fascia::core {
 
+namespace {
+bool g_timers = false;
+}
+void setTimersEnabled(bool on) { g_timers = on; }
+bool timersEnabled() { return g_timers; }
+
 Base::Base() = default;
 
 BaseParam* Base::findParam(const std::string& name) const {

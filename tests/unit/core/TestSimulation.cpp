@@ -178,6 +178,7 @@ TEST_CASE("state() of a name that is no state is an error", "[Simulation]") {
 }
 
 TEST_CASE("Timers accumulate the calls and time of each component", "[Simulation]") {
+    fascia::core::setTimersEnabled(true);
     auto sim = scene(body("dt=\"0.01\"", "force=\"1 0 0\""));
     sim->run(4);
     auto rows = sim->timers();
@@ -200,6 +201,13 @@ TEST_CASE("Timers accumulate the calls and time of each component", "[Simulation
     CHECK(row("/root/body/euler").calls == 8);
     CHECK(row("/root/body/nan").calls == 8);
     CHECK(row("/root/body/euler").seconds >= before);
+    // switched off: calls still counted, no time added
+    fascia::core::setTimersEnabled(false);
+    const double frozen = row("/root/body/euler").seconds;
+    sim->run(2);
+    rows = sim->timers();
+    CHECK(row("/root/body/euler").calls == 10);
+    CHECK(row("/root/body/euler").seconds == frozen);
 }
 
 TEST_CASE("Timer rows are sorted by path", "[Simulation]") {
