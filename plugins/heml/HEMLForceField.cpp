@@ -1,0 +1,733 @@
+#include "HEMLForceField.h"
+#include "HEMLKernel.h"
+
+#include "ViscoelasticProny.h"
+#include "fascia/materials/Laws.h"
+#include "fascia/scene/Node.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace fascia::heml {
+
+using materials::BaseMaterial;
+
+namespace {
+
+// the built-in laws that get an inlined element loop
+enum LawKind { Generic, SVK, IncNH, IncMR, CompNH, CompMR, NH, TI, Ortho };
+
+int lawKind(const BaseMaterial* m) {
+    using namespace materials;
+    if (dynamic_cast<const Material<StVenantKirchhoffLaw>*>(m)) return SVK;
+    if (dynamic_cast<const Material<IncompressibleNeoHookeanLaw>*>(m)) return IncNH;
+    if (dynamic_cast<const Material<IncompressibleMooneyRivlinLaw>*>(m)) return IncMR;
+    if (dynamic_cast<const Material<CompressibleNeoHookeanLaw>*>(m)) return CompNH;
+    if (dynamic_cast<const Material<CompressibleMooneyRivlinLaw>*>(m)) return CompMR;
+    if (dynamic_cast<const Material<NeoHookeanLaw>*>(m)) return NH;
+    if (dynamic_cast<const Material<TransverselyIsotropicLaw>*>(m)) return TI;
+    if (dynamic_cast<const Material<OrthotropicLaw>*>(m)) return Ortho;
+    return Generic;
+}
+
+template <class Law>
+const Law& lawOf(const BaseMaterial* m) {
+    return static_cast<const materials::Material<Law>*>(m)->law();
+}
+
+template <bool Forces, bool Visco>
+double runAny(HEMLData& d, const Block& b, const std::vector<int>& kinds, const double* x) {
+    using namespace materials;
+    if (d.massSpring) return runBlock<SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
+    const BaseMaterial* m = d.materials[b.material];
+    switch (kinds[b.material]) {
+    case SVK: return runBlock<LawEval<StVenantKirchhoffLaw>, Forces, Visco>(d, b, {lawOf<StVenantKirchhoffLaw>(m)}, x);
+    case IncNH: return runBlock<LawEval<IncompressibleNeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<IncompressibleNeoHookeanLaw>(m)}, x);
+    case IncMR: return runBlock<LawEval<IncompressibleMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<IncompressibleMooneyRivlinLaw>(m)}, x);
+    case CompNH: return runBlock<LawEval<CompressibleNeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<CompressibleNeoHookeanLaw>(m)}, x);
+    case CompMR: return runBlock<LawEval<CompressibleMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<CompressibleMooneyRivlinLaw>(m)}, x);
+    case NH: return runBlock<LawEval<NeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<NeoHookeanLaw>(m)}, x);
+    case TI: return runBlock<LawEval<TransverselyIsotropicLaw>, Forces, Visco>(d, b, {lawOf<TransverselyIsotropicLaw>(m)}, x);
+    case Ortho: return runBlock<LawEval<OrthotropicLaw>, Forces, Visco>(d, b, {lawOf<OrthotropicLaw>(m)}, x);
+    default: return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
+    }
+}
+
+// reverse Cuthill-McKee order of the nodes (PERFORMANCE.md lesson 5): internal -> input node
+std::vector<int> reverseCuthillMcKee(size_t n, const Tetrahedra& tets) {
+    std::vector<std::vector<int>> adj(n);
+    for (const auto& t : tets)
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b)
+                if (a != b) adj[t[a]].push_back(t[b]);
+    std::vector<int> degree(n);
+    for (size_t i = 0; i < n; ++i) {
+        auto& v = adj[i];
+        std::sort(v.begin(), v.end());
+        v.erase(std::unique(v.begin(), v.end()), v.end());
+        degree[i] = int(v.size());
+    }
+    auto byDegree = [&](int a, int b) { return degree[a] != degree[b] ? degree[a] < degree[b] : a < b; };
+    for (auto& v : adj) std::sort(v.begin(), v.end(), byDegree);
+
+    std::vector<int> seeds(n);
+    std::iota(seeds.begin(), seeds.end(), 0);
+    std::sort(seeds.begin(), seeds.end(), byDegree);
+
+    std::vector<char> seen(n, 0);
+    std::vector<int> order;
+    order.reserve(n);
+    std::vector<int> level(n, -1);
+    auto bfs = [&](int start, std::vector<int>& out, std::vector<char>& mark) {
+        size_t head = out.size();
+        out.push_back(start);
+        mark[start] = 1;
+        while (head < out.size()) {
+            const int v = out[head++];
+            for (int w : adj[v])
+                if (!mark[w]) {
+                    mark[w] = 1;
+                    out.push_back(w);
+                }
+        }
+    };
+    for (int s : seeds) {
+        if (seen[s]) continue;
+        // pseudo-peripheral start: the least connected node of the last BFS level from s
+        std::vector<int> comp;
+        std::vector<char> mark = seen;
+        bfs(s, comp, mark);
+        int start = s;
+        // BFS levels from s (comp is in BFS order)
+        for (int v : comp) level[v] = -1;
+        level[s] = 0;
+        int maxLevel = 0;
+        for (int v : comp)
+            for (int w : adj[v])
+                if (level[w] < 0) {
+                    level[w] = level[v] + 1;
+                    maxLevel = std::max(maxLevel, level[w]);
+                }
+        for (int v : comp)
+            if (level[v] == maxLevel && (start == s || byDegree(v, start))) start = v;
+        bfs(start, order, seen);
+    }
+    std::reverse(order.begin(), order.end());
+    return order;
+}
+
+// positions (state order, 3 doubles per node) into the internal order (4 per node); call inside a
+// parallel region
+const double* copyIn(HEMLData& d, const double* x) {
+    if (d.directGather) return x;
+    const size_t n = d.nNodes;
+#pragma omp for schedule(static)
+    for (size_t p = 0; p < n; ++p) {
+        const double* s = x + 3 * size_t(d.nodeOf[p]);
+        double* q = d.xin.data() + 4 * p;
+        q[0] = s[0];
+        q[1] = s[1];
+        q[2] = s[2];
+        q[3] = 0.0;
+    }
+    return d.xin.data();
+}
+
+double vonMises(const Mat3& s) {
+    const double a = s(0, 0) - s(1, 1), b = s(1, 1) - s(2, 2), c = s(2, 2) - s(0, 0);
+    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s(0, 1) * s(0, 1) + s(1, 2) * s(1, 2) + s(0, 2) * s(0, 2)));
+}
+
+} // namespace
+
+HEMLForceField::HEMLForceField() = default;
+HEMLForceField::~HEMLForceField() = default;
+
+// ---------------------------------------------------------------------------------------------
+// set-up
+
+const MeshData* HEMLForceField::meshSource() const {
+    if (m_mesh.isSet()) return &m_mesh.get();
+    if (m_tetraIn.isSet() || !node()) return nullptr;
+    if (auto* topo = node()->findInContext<core::BaseTopology>()) return &topo->meshData();
+    return nullptr;
+}
+
+materials::BaseMaterial* HEMLForceField::defaultMaterial() const {
+    if (m_material.get()) return m_material.get();
+    if (m_groupMaterials.isSet() || !node()) return nullptr;
+    return node()->findInContext<BaseMaterial>();
+}
+
+std::vector<HEMLForceField::GroupMaterial> HEMLForceField::parseGroupMaterials() const {
+    std::vector<GroupMaterial> out;
+    if (!m_groupMaterials.isSet()) return out;
+    std::istringstream is(m_groupMaterials.get());
+    std::vector<std::string> tok;
+    for (std::string t; is >> t;) tok.push_back(t);
+    const std::string form = "write pairs of a group (tag number or name) and a material path, e.g. \"1 @liverMat 2 @tumourMat\"";
+    if (tok.empty() || tok.size() % 2) fail(m_groupMaterials, "groupMaterials needs pairs: " + form);
+    const MeshData* mesh = meshSource();
+    for (size_t i = 0; i < tok.size(); i += 2) {
+        GroupMaterial g{};
+        const std::string& key = tok[i];
+        char* end = nullptr;
+        const long tag = std::strtol(key.c_str(), &end, 10);
+        if (end && *end == 0 && !key.empty()) {
+            g.tag = int(tag);
+        } else {
+            bool found = false;
+            if (mesh)
+                for (const auto& [t, name] : mesh->groupNames)
+                    if (name == key) {
+                        g.tag = t;
+                        found = true;
+                    }
+            if (!found) {
+                std::vector<std::string> names;
+                if (mesh)
+                    for (const auto& kv : mesh->groupNames) names.push_back(kv.second);
+                auto close = core::closestMatches(key, names);
+                fail(m_groupMaterials, "group '" + key + "' is neither a tag number nor a group name of the mesh",
+                     close.empty() ? std::vector<std::string>{} : std::vector<std::string>{"did you mean '" + close[0] + "'?"});
+            }
+        }
+        std::string path = tok[i + 1];
+        if (path.empty() || path[0] != '@')
+            fail(m_groupMaterials, "'" + path + "' should be a material path starting with '@': " + form);
+        g.path = path.substr(1);
+        core::Component* c = node() ? node()->resolveComponent(g.path) : nullptr;
+        if (!c) fail(m_groupMaterials, "no component '" + g.path + "' (from '" + path + "') for group '" + key + "'");
+        g.material = dynamic_cast<BaseMaterial*>(c);
+        if (!g.material)
+            fail(m_groupMaterials, "'" + g.path + "' is a " + c->className() + ", not a material, for group '" + key + "'");
+        for (const auto& o : out)
+            if (o.tag == g.tag) fail(m_groupMaterials, "group " + std::to_string(g.tag) + " is given twice");
+        out.push_back(g);
+    }
+    return out;
+}
+
+std::vector<core::Component*> HEMLForceField::dependencies() const {
+    std::vector<core::Component*> deps;
+    if (!node()) return deps;
+    if (auto* s = node()->findInContext<core::BaseMechanicalState>()) deps.push_back(s);
+    if (!m_mesh.isSet() && !m_tetraIn.isSet())
+        if (auto* topo = node()->findInContext<core::BaseTopology>()) deps.push_back(topo);
+    if (!m_stiffness.isSet()) {
+        if (auto* m = defaultMaterial()) deps.push_back(m);
+        for (const auto& g : parseGroupMaterials()) deps.push_back(g.material);
+    }
+    if (auto* v = node()->findLocal<viscoelastic::ViscoelasticProny>()) deps.push_back(v);
+    return deps;
+}
+
+void HEMLForceField::init() {
+    m_data = std::make_unique<HEMLData>();
+    HEMLData& d = *m_data;
+    d.J0 = m_J0.get();
+
+    // topology
+    if (m_mesh.isSet() && m_tetraIn.isSet())
+        fail(m_tetraIn, "give the tetrahedra either by 'mesh' or by 'tetrahedra', not both");
+    const MeshData* mesh = meshSource();
+    if (m_tetraIn.isSet()) m_tets = m_tetraIn.get();
+    else if (mesh) m_tets = mesh->tetrahedra;
+    else fail("no tetrahedra: set mesh=\"@loader.mesh\" or tetrahedra=\"@loader.tetrahedra\", or put a MeshLoader or GridMesh in the node");
+    if (m_tets.empty()) fail(m_tetraIn.isSet() ? static_cast<const core::BaseParam&>(m_tetraIn) : m_mesh, "the mesh has no tetrahedra");
+
+    // rest positions: the state's, else the mesh's points
+    Positions rest;
+    core::BaseMechanicalState* state = node() ? node()->findInContext<core::BaseMechanicalState>() : nullptr;
+    if (state && state->size() > 0) rest = state->x0();
+    else if (mesh && !mesh->points.empty()) rest = mesh->points;
+    else fail("no rest positions: put a MechanicalObject in the node (or give a mesh with points)");
+    const size_t n = rest.size();
+    for (size_t e = 0; e < m_tets.size(); ++e)
+        for (int a = 0; a < 4; ++a)
+            if (m_tets[e][a] < 0 || size_t(m_tets[e][a]) >= n)
+                fail("tetrahedron " + std::to_string(e) + " has node " + std::to_string(m_tets[e][a]) + " but there are " +
+                     std::to_string(n) + " nodes");
+
+    // materials
+    d.massSpring = m_stiffness.isSet();
+    m_elementMaterial.assign(m_tets.size(), nullptr);
+    if (d.massSpring) {
+        if (m_material.get() || m_groupMaterials.isSet())
+            fail(m_stiffness, "'stiffness' selects the mass-spring mode, which uses no material: remove 'material'/'groupMaterials' or 'stiffness'");
+    } else {
+        const auto groups = parseGroupMaterials();
+        BaseMaterial* def = defaultMaterial();
+        if (groups.empty()) {
+            if (!def) fail("no material: add one (e.g. <NeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>) to the node, set material=\"@name\", or set 'stiffness' for mass-spring");
+            std::fill(m_elementMaterial.begin(), m_elementMaterial.end(), def);
+        } else {
+            if (!mesh || mesh->tetrahedronGroup.size() != m_tets.size())
+                fail(m_groupMaterials, "groupMaterials needs a mesh with a group tag per tetrahedron (mesh=\"@loader.mesh\")");
+            std::map<int, BaseMaterial*> byTag;
+            for (const auto& g : groups) byTag[g.tag] = g.material;
+            for (size_t e = 0; e < m_tets.size(); ++e) {
+                const int tag = mesh->tetrahedronGroup[e];
+                auto it = byTag.find(tag);
+                BaseMaterial* m = it != byTag.end() ? it->second : def;
+                if (!m)
+                    fail(m_groupMaterials, "tetrahedron " + std::to_string(e) + " is in group " + std::to_string(tag) +
+                                               ", which groupMaterials does not list, and 'material' is not set");
+                m_elementMaterial[e] = m;
+            }
+        }
+    }
+
+    // fibre directions per element (input order)
+    m_dirA.clear();
+    m_dirB.clear();
+    auto fibres = [&](int which, const core::Param<std::string>& arrayParam, std::vector<Vec3>& dirs) {
+        const unsigned bit = which == 0 ? BaseMaterial::UsesI4 : BaseMaterial::UsesI6;
+        bool any = false;
+        for (auto* m : m_elementMaterial) any = any || (m && (m->uses() & bit));
+        if (!any) {
+            if (arrayParam.isSet()) warn("'" + arrayParam.name() + "' is set but no material reads that fibre direction");
+            return;
+        }
+        dirs.assign(m_tets.size(), Vec3::Zero());
+        const std::vector<double>* arr = nullptr;
+        if (arrayParam.isSet()) {
+            if (!mesh) fail(arrayParam, "'" + arrayParam.name() + "' needs a mesh with cell arrays (mesh=\"@loader.mesh\")");
+            auto it = mesh->cellArrays.find(arrayParam.get());
+            if (it == mesh->cellArrays.end()) {
+                std::vector<std::string> names;
+                for (const auto& kv : mesh->cellArrays) names.push_back(kv.first);
+                auto close = core::closestMatches(arrayParam.get(), names);
+                fail(arrayParam, "the mesh has no cell array '" + arrayParam.get() + "'",
+                     close.empty() ? std::vector<std::string>{} : std::vector<std::string>{"did you mean '" + close[0] + "'?"});
+            }
+            arr = &it->second;
+            if (arr->size() != 3 * m_tets.size())
+                fail(arrayParam, "cell array '" + arrayParam.get() + "' has " + std::to_string(arr->size()) +
+                                     " numbers; a fibre direction needs 3 per tetrahedron (" + std::to_string(3 * m_tets.size()) + ")");
+        }
+        for (size_t e = 0; e < m_tets.size(); ++e) {
+            const BaseMaterial* m = m_elementMaterial[e];
+            if (!(m->uses() & bit)) continue;
+            Vec3 a;
+            if (arr) {
+                a = Vec3((*arr)[3 * e], (*arr)[3 * e + 1], (*arr)[3 * e + 2]);
+                const double len = a.norm();
+                if (!(len > 1e-12))
+                    fail(arrayParam, "fibre direction of tetrahedron " + std::to_string(e) + " in '" + arrayParam.get() + "' is zero");
+                a /= len;
+            } else {
+                const Vec3* md = m->fibreDirection(which);
+                if (!md)
+                    fail("material '" + m->name() + "' reads fibre direction " + std::to_string(which + 1) +
+                         " but gives none: set '" + arrayParam.name() + "' to a mesh cell array");
+                a = md->normalized();
+            }
+            dirs[e] = a;
+        }
+    };
+    fibres(0, m_fibreArray, m_dirA);
+    fibres(1, m_fibreArray2, m_dirB);
+
+    // viscoelasticity
+    m_visco = node() ? node()->findLocal<viscoelastic::ViscoelasticProny>() : nullptr;
+    if (m_visco && d.massSpring) fail(m_stiffness, "ViscoelasticProny is not supported in mass-spring mode");
+
+    m_rest = rest;
+    precompute(rest);
+}
+
+void HEMLForceField::precompute(const Positions& rest) {
+    HEMLData& d = *m_data;
+    const size_t n = rest.size(), ne = m_tets.size();
+    d.nNodes = n;
+    d.nElements = ne;
+
+    // node order
+    d.nodeOf = reverseCuthillMcKee(n, m_tets);
+    d.internalOf.assign(n, 0);
+    for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
+
+    // distinct materials
+    std::vector<int> matIndex(ne, -1);
+    d.materials.clear();
+    if (!d.massSpring) {
+        std::map<const BaseMaterial*, int> idx;
+        for (size_t e = 0; e < ne; ++e) {
+            auto it = idx.find(m_elementMaterial[e]);
+            if (it == idx.end()) {
+                it = idx.emplace(m_elementMaterial[e], int(d.materials.size())).first;
+                d.materials.push_back(m_elementMaterial[e]);
+            }
+            matIndex[e] = it->second;
+        }
+    }
+    m_kinds.clear();
+    for (auto* m : d.materials) m_kinds.push_back(lawKind(m));
+
+    // element order: by material, then by lowest internal node (locality of the block buffers)
+    std::vector<int> order(ne);
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<int> minNode(ne);
+    for (size_t e = 0; e < ne; ++e) {
+        int m = d.internalOf[m_tets[e][0]];
+        for (int a = 1; a < 4; ++a) m = std::min(m, d.internalOf[m_tets[e][a]]);
+        minNode[e] = m;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        if (matIndex[a] != matIndex[b]) return matIndex[a] < matIndex[b];
+        return minNode[a] < minNode[b];
+    });
+
+    // blocks: per material segment, near kBlockSize elements each, padded to kLanes
+    d.blocks.clear();
+    d.elementOf.clear();
+    for (size_t s = 0; s < ne;) {
+        size_t t = s;
+        while (t < ne && matIndex[order[t]] == matIndex[order[s]]) ++t;
+        const size_t count = t - s, nb = (count + kBlockSize - 1) / kBlockSize;
+        for (size_t k = 0; k < nb; ++k) {
+            const size_t a = s + count * k / nb, b = s + count * (k + 1) / nb;
+            Block blk;
+            blk.begin = d.elementOf.size();
+            for (size_t i = a; i < b; ++i) d.elementOf.push_back(order[i]);
+            while ((d.elementOf.size() - blk.begin) % kLanes) d.elementOf.push_back(-1 - order[b - 1]);  // padding
+            blk.end = d.elementOf.size();
+            blk.material = matIndex[order[s]];
+            d.blocks.push_back(blk);
+        }
+        s = t;
+    }
+    d.nSlots = d.elementOf.size();
+    d.slotOf.assign(ne, -1);
+
+    // per-slot data
+    const size_t S = d.nSlots;
+    for (auto& v : d.node) v.assign(S, 0);
+    d.vol.assign(S, 0.0);
+    d.invDetV.assign(S, 0.0);
+    const bool anyI4 = !m_dirA.empty(), anyI6 = !m_dirB.empty();
+    for (int k = 0; k < 6; ++k) {
+        d.G[k].assign(d.massSpring ? 0 : S, 0.0);
+        d.kk[k].assign(d.massSpring ? S : 0, 0.0);
+        d.len0[k].assign(d.massSpring ? S : 0, 0.0);
+    }
+    for (int k = 0; k < 3; ++k) {
+        d.w4[k].assign(anyI4 ? S : 0, 0.0);
+        d.w6[k].assign(anyI6 ? S : 0, 0.0);
+    }
+
+    // edges shared between tetrahedra (mass-spring mode splits k between them)
+    std::map<std::pair<int, int>, int> edgeCount;
+    if (d.massSpring)
+        for (const auto& t : m_tets)
+            for (int k = 0; k < 6; ++k) {
+                int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
+                ++edgeCount[{std::min(a, b), std::max(a, b)}];
+            }
+
+    m_altitude.assign(ne, 0.0);
+    for (size_t slot = 0; slot < S; ++slot) {
+        const bool pad = d.elementOf[slot] < 0;
+        const int e = pad ? -1 - d.elementOf[slot] : d.elementOf[slot];
+        if (!pad) d.slotOf[e] = int(slot);
+        const auto& t = m_tets[e];
+        for (int a = 0; a < 4; ++a) d.node[a][slot] = d.internalOf[t[a]];
+        // Algorithm 1: V, V^-1, Vol, C_k, vtr, Mtr
+        Mat3 V;
+        for (int k = 0; k < 3; ++k) V.col(k) = rest[t[k + 1]] - rest[t[0]];
+        const double det = V.determinant();
+        double maxEdge = 0;
+        for (int k = 0; k < 6; ++k) maxEdge = std::max(maxEdge, (rest[t[kEdgeB[k]]] - rest[t[kEdgeA[k]]]).norm());
+        if (!(std::abs(det) > 1e-12 * maxEdge * maxEdge * maxEdge))
+            fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
+                 std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
+        d.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
+        d.invDetV[slot] = 1.0 / det;
+        if (!pad) {
+            // shortest altitude: 3 Vol / largest face area
+            double maxFace = 0;
+            for (int f = 0; f < 4; ++f) {
+                const Vec3& p = rest[t[(f + 1) % 4]];
+                const Vec3& q = rest[t[(f + 2) % 4]];
+                const Vec3& r = rest[t[(f + 3) % 4]];
+                maxFace = std::max(maxFace, 0.5 * (q - p).cross(r - p).norm());
+            }
+            m_altitude[e] = 3.0 * (std::abs(det) / 6.0) / maxFace;
+        }
+        if (d.massSpring) {
+            for (int k = 0; k < 6; ++k) {
+                const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
+                d.len0[k][slot] = (rest[b] - rest[a]).norm();
+                d.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / edgeCount[{std::min(a, b), std::max(a, b)}];
+            }
+            continue;
+        }
+        // Algorithm 1 (Appendix A, C): C_k = V^-T D_k V^-1 enter through G = V^-1 V^-T only
+        // (vtr_k = tr(D_k G), Mtr_ij = tr(D_i G D_j G), a0.C_k a0 = (V^-1 a0).D_k (V^-1 a0))
+        const Mat3 Vi = V.inverse();
+        const Mat3 G = Vi * Vi.transpose();
+        d.G[0][slot] = G(0, 0);
+        d.G[1][slot] = G(1, 1);
+        d.G[2][slot] = G(2, 2);
+        d.G[3][slot] = G(0, 1);
+        d.G[4][slot] = G(1, 2);
+        d.G[5][slot] = G(0, 2);
+        if (anyI4) {
+            const Vec3 w = m_dirA[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirA[e]);
+            for (int q = 0; q < 3; ++q) d.w4[q][slot] = w[q];
+        }
+        if (anyI6) {
+            const Vec3 w = m_dirB[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirB[e]);
+            for (int q = 0; q < 3; ++q) d.w6[q][slot] = w[q];
+        }
+    }
+
+    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
+    // to them; then, per node, its rows in block order for the reduction
+    d.rowInternal.clear();
+    std::vector<int>& rowInternal = d.rowInternal;
+    std::vector<int> local(n, -1);
+    for (auto& b : d.blocks) {
+        b.rowBegin = rowInternal.size();
+        std::vector<int> nodes;
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            local[nodes[i]] = int(i);
+            rowInternal.push_back(nodes[i]);
+        }
+        b.rowEnd = rowInternal.size();
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
+    }
+    const size_t rows = rowInternal.size();
+    d.rowNode.resize(rows);
+    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
+    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
+    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
+    d.xin.assign(4 * n, 0.0);
+    d.xrow.assign(4 * rows, 0.0);
+    d.buf.assign(4 * rows, 0.0);
+    d.nodeRowStart.assign(n + 1, 0);
+    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
+    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
+    d.nodeRows.assign(rows, 0);
+    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
+    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
+    d.blockEnergy.assign(d.blocks.size(), 0.0);
+
+    // viscoelastic state
+    d.nTerms = 0;
+    d.nComp = 0;
+    d.Yprev.clear();
+    d.Ycur.clear();
+    d.yComputed = false;
+    if (m_visco) {
+        d.nTerms = int(m_visco->termCount());
+        d.relaxIso = m_visco->relaxesIsochoric();
+        d.relaxVol = m_visco->relaxesVolumetric();
+        d.nComp = d.relaxIso ? 7 : 1;
+        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
+        d.Ycur = d.Yprev;
+    }
+}
+
+void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
+    if (!m_data) fail("used before init()");
+    if (state.size() != m_data->nNodes)
+        core::throwSimulationError("[" + path() + "] the state '" + state.name() + "' has " + std::to_string(state.size()) +
+                             " nodes but the force field was set up for " + std::to_string(m_data->nNodes));
+}
+
+// ---------------------------------------------------------------------------------------------
+// forces
+
+void HEMLForceField::beginStep(double, double) {
+    if (!m_data) return;
+    HEMLData& d = *m_data;
+    if (d.nTerms > 0 && d.yComputed) {
+        std::swap(d.Yprev, d.Ycur);  // commit gamma^n (eq. (20)) for the next step
+        d.yComputed = false;
+    }
+    m_stepOpen = true;
+}
+
+void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double) {
+    checkState(state);
+    if (f.size() != state.size()) core::throwSimulationError("[" + path() + "] force array of the wrong size");
+    addForceRaw(state.x().data()->data(), f.data()->data());
+}
+
+void HEMLForceField::addForceRaw(const double* x, double* fout) {
+    HEMLData& d = *m_data;
+    const bool visco = d.nTerms > 0;
+    if (visco) {
+        if (!m_visco->hasCoefficients())
+            core::throwSimulationError("[" + path() + "] ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
+        d.A = m_visco->A();
+        d.B = m_visco->B();
+    }
+    const size_t n = d.nNodes, nb = d.blocks.size();
+    const bool parallel = nb > 1;
+#pragma omp parallel if (parallel)
+    {
+        const double* xi = copyIn(d, x);
+        // element blocks, each into its own node rows
+#pragma omp for schedule(dynamic, 1)
+        for (size_t b = 0; b < nb; ++b)
+            d.blockEnergy[b] = visco ? runAny<true, true>(d, d.blocks[b], m_kinds, xi) : runAny<true, false>(d, d.blocks[b], m_kinds, xi);
+        // per node, sum its rows in block order (deterministic for any thread count)
+#pragma omp for schedule(static)
+        for (size_t p = 0; p < n; ++p) {
+            double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+            for (int k = d.nodeRowStart[p]; k < d.nodeRowStart[p + 1]; ++k) {
+                const double* r = d.buf.data() + 4 * size_t(d.nodeRows[k]);
+                a0 += r[0];
+                a1 += r[1];
+                a2 += r[2];
+            }
+            double* q = fout + 3 * size_t(d.nodeOf[p]);
+            q[0] += a0;
+            q[1] += a1;
+            q[2] += a2;
+        }
+    }
+    if (visco && m_stepOpen) d.yComputed = true;
+}
+
+double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
+    checkState(state);
+    HEMLData& d = *m_data;
+    const double* x = state.x().data()->data();
+    const size_t nb = d.blocks.size();
+#pragma omp parallel if (nb > 1)
+    {
+        const double* xi = copyIn(d, x);
+#pragma omp for schedule(dynamic, 1)
+        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runAny<false, false>(d, d.blocks[b], m_kinds, xi);
+    }
+    double E = 0.0;
+    for (double e : d.blockEnergy) E += e;
+    return E;
+}
+
+// ---------------------------------------------------------------------------------------------
+// time step, cell data, accessors
+
+double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    if (!m_data || !node()) return inf;
+    const HEMLData& d = *m_data;
+    auto* mass = node()->findInContext<core::BaseMass>();
+    if (!mass) return inf;
+    if (d.massSpring) {
+        const auto& m = mass->nodalMasses();
+        if (m.size() != d.nNodes) return inf;
+        // omega^2 <= max_i sum_j k_ij (1/m_i + 1/m_j) (Gershgorin on M^-1/2 K M^-1/2, unique edges)
+        std::map<std::pair<int, int>, bool> edges;
+        for (const auto& t : m_tets)
+            for (int k = 0; k < 6; ++k) {
+                const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
+                edges[{std::min(a, b), std::max(a, b)}] = true;
+            }
+        std::vector<double> rate(d.nNodes, 0.0);
+        const double k = m_stiffness.get();
+        for (const auto& e : edges) {
+            const int a = e.first.first, b = e.first.second;
+            if (m[a] <= 0 || m[b] <= 0) continue;
+            const double s = k * (1.0 / m[a] + 1.0 / m[b]);
+            rate[a] += s;
+            rate[b] += s;
+        }
+        const double w2 = *std::max_element(rate.begin(), rate.end());
+        return w2 > 0 ? 2.0 / std::sqrt(w2) : inf;
+    }
+    double rho = mass->density();
+    if (!std::isfinite(rho)) {
+        double M = 0, V = 0;
+        for (double m : mass->nodalMasses()) M += m;
+        for (size_t s = 0; s < d.nSlots; ++s) V += d.vol[s];
+        rho = V > 0 ? M / V : std::numeric_limits<double>::quiet_NaN();
+    }
+    if (!(rho > 0)) return inf;
+    double dt = inf;
+    std::map<const BaseMaterial*, double> speed;
+    for (size_t e = 0; e < m_tets.size(); ++e) {
+        const BaseMaterial* m = m_elementMaterial[e];
+        auto it = speed.find(m);
+        if (it == speed.end()) it = speed.emplace(m, m->waveSpeed(rho)).first;
+        if (it->second > 0) dt = std::min(dt, m_altitude[e] / it->second);
+    }
+    return dt;
+}
+
+void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
+    checkState(state);
+    const size_t ne = m_tets.size();
+    core::CellField J{"J", 1, "", std::vector<double>(ne)};
+    core::CellField vm{"vonMises", 1, "Pa", std::vector<double>(ne)};
+    const auto& x = state.x();
+    const double J0 = m_J0.get();
+    for (size_t e = 0; e < ne; ++e) {
+        const auto& t = m_tets[e];
+        Mat3 V, v;
+        for (int k = 0; k < 3; ++k) {
+            V.col(k) = m_rest[t[k + 1]] - m_rest[t[0]];
+            v.col(k) = x[t[k + 1]] - x[t[0]];
+        }
+        const Mat3 F = v * V.inverse();
+        const double Je = F.determinant();
+        J.values[e] = Je;
+        const BaseMaterial* m = m_elementMaterial[e];
+        if (!m) continue;  // mass-spring: no stress
+        const Mat3 Bm = F * F.transpose();
+        materials::Invariants in;
+        in.I1 = Bm.trace();
+        in.I2 = 0.5 * (in.I1 * in.I1 - (Bm * Bm).trace());
+        in.J = Je;
+        Vec3 fa = Vec3::Zero(), fb = Vec3::Zero();
+        if (!m_dirA.empty()) {
+            fa = F * m_dirA[e];
+            in.I4 = fa.squaredNorm();
+        }
+        if (!m_dirB.empty()) {
+            fb = F * m_dirB[e];
+            in.I6 = fb.squaredNorm();
+        }
+        materials::Response r;
+        m->evaluate(&in, &r, 1, J0);
+        // Kirchhoff stress tau = F S F^T = 2 [dI1 B + dI2 (I1 B - B^2) + dI4 Fa Fa^T + dI6 Fb Fb^T] + J dW/dJ I
+        const Mat3 tau = 2.0 * (r.dI1 * Bm + r.dI2 * (in.I1 * Bm - Bm * Bm) + r.dI4 * fa * fa.transpose() +
+                                r.dI6 * fb * fb.transpose()) +
+                         Je * (r.dJiso + r.dJvol) * Mat3::Identity();
+        vm.values[e] = vonMises(tau / std::max(Je, J0));
+    }
+    out.push_back(std::move(J));
+    if (!m_data->massSpring) out.push_back(std::move(vm));
+}
+
+size_t HEMLForceField::elementCount() const { return m_tets.size(); }
+size_t HEMLForceField::blockCount() const { return m_data ? m_data->blocks.size() : 0; }
+const materials::BaseMaterial* HEMLForceField::materialOf(size_t e) const {
+    return e < m_elementMaterial.size() ? m_elementMaterial[e] : nullptr;
+}
+bool HEMLForceField::usesFastPath() const {
+    if (!m_data || m_data->massSpring) return true;
+    for (int k : m_kinds)
+        if (k == Generic) return false;
+    return true;
+}
+
+} // namespace fascia::heml

@@ -1,0 +1,479 @@
+#pragma once
+/// Internal to HEMLForceField: the element data as structure of arrays and the element loop
+/// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
+/// virtual call for any other material, or the mass-spring energy of eq. (38)).
+#include "fascia/materials/Laws.h"
+
+#include <cmath>
+#include <cstddef>
+#include <algorithm>
+#include <cstdlib>
+#include <new>
+#include <vector>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+namespace fascia::heml {
+
+#if defined(__AVX__)
+/// 4x4 transpose of doubles: rows r0..r3 become columns.
+inline void transpose4(__m256d& r0, __m256d& r1, __m256d& r2, __m256d& r3) {
+    const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+    const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+    r0 = _mm256_permute2f128_pd(t0, t2, 0x20);
+    r1 = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r2 = _mm256_permute2f128_pd(t0, t2, 0x31);
+    r3 = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+#endif
+
+/// 64-byte aligned storage for the element and node arrays.
+template <class T>
+struct AlignedAllocator {
+    using value_type = T;
+    AlignedAllocator() = default;
+    template <class U> AlignedAllocator(const AlignedAllocator<U>&) {}
+    T* allocate(size_t n) {
+        const size_t bytes = ((n * sizeof(T) + 63) / 64) * 64;
+        void* p = std::aligned_alloc(64, bytes ? bytes : 64);
+        if (!p) throw std::bad_alloc();
+        return static_cast<T*>(p);
+    }
+    void deallocate(T* p, size_t) { std::free(p); }
+    template <class U> bool operator==(const AlignedAllocator<U>&) const { return true; }
+    template <class U> bool operator!=(const AlignedAllocator<U>&) const { return false; }
+};
+using DVec = std::vector<double, AlignedAllocator<double>>;
+using IVec = std::vector<int, AlignedAllocator<int>>;
+
+/// Elements per chunk of the element loop (two AVX-512 vectors of doubles, PERFORMANCE.md lesson 3).
+constexpr int kLanes = 16;
+/// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
+/// the mesh only, never on the thread count (DESIGN.md principle 5).
+constexpr size_t kBlockSize = 1024;
+
+/// Edge k joins local nodes kEdgeA[k] -> kEdgeB[k]: v1 = x1 - x0, v2 = x2 - x0, v3 = x3 - x0,
+/// v4 = v2 - v1, v5 = v3 - v2, v6 = v1 - v3 (HEML Appendix A, eq. (A.2)).
+constexpr int kEdgeA[6] = {0, 0, 0, 1, 2, 3};
+constexpr int kEdgeB[6] = {1, 2, 3, 2, 3, 1};
+/// tr(D_k M) for the six D_k of eq. (A.6) and a symmetric M = (M11 M22 M33 M12 M23 M13): the map
+/// from a 3x3 tensor in the rest edge basis to the six link coefficients.
+inline void traceDk(double M11, double M22, double M33, double M12, double M23, double M13, double out[6]) {
+    out[0] = M11 + M12 + M13;
+    out[1] = M22 + M12 + M23;
+    out[2] = M33 + M13 + M23;
+    out[3] = -M12;
+    out[4] = -M23;
+    out[5] = -M13;
+}
+
+/// A contiguous range of (padded) element slots with one material. Its elements refer to the
+/// block's own node rows [rowBegin, rowEnd): positions are copied into them before the block runs
+/// (so the gather reads from cache) and its forces are added into them (a per-block node buffer).
+struct Block {
+    size_t begin = 0, end = 0;
+    size_t rowBegin = 0, rowEnd = 0;
+    int material = -1;  ///< index into HEMLData::materials, -1 in mass-spring mode
+};
+
+/// Everything the element loop reads and writes.
+struct HEMLData {
+    size_t nNodes = 0, nElements = 0, nSlots = 0;
+    std::vector<int> nodeOf;      ///< internal node -> state node (reverse Cuthill-McKee order)
+    std::vector<int> internalOf;  ///< state node -> internal node
+    std::vector<int> elementOf;   ///< slot -> input element (-1: padding)
+    std::vector<int> slotOf;      ///< input element -> slot
+
+    // per slot (structure of arrays)
+    IVec node[4];          ///< block-local node rows (relative to the block's rowBegin)
+    DVec vol;              ///< rest volume Vol (0 in padding slots)
+    DVec invDetV;          ///< 1 / det(V1, V2, V3) (signed)
+    /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
+    /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
+    /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
+    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (PERFORMANCE.md: bytes per element).
+    DVec G[6];
+    DVec w4[3], w6[3];     ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
+    DVec kk[6], len0[6];   ///< mass-spring mode: stiffness share and rest length per edge
+
+    std::vector<Block> blocks;
+    std::vector<const materials::BaseMaterial*> materials;
+    bool massSpring = false;
+    double J0 = 0.4;
+
+    // node rows of the blocks (4 doubles each) and the deterministic reduction
+    std::vector<int> rowInternal;    ///< internal node of each row
+    std::vector<int> rowNode;        ///< state node of each row
+    bool directGather = false;       ///< rows read the state's positions directly (small meshes)
+    DVec xin;                        ///< positions in internal order, 4 doubles per node
+    DVec xrow;                       ///< positions per row
+    DVec buf;                        ///< forces per row (the per-block node buffers)
+    std::vector<int> nodeRowStart;   ///< per internal node p: its rows are nodeRows[nodeRowStart[p] .. [p+1])
+    std::vector<int> nodeRows;       ///< rows of each node, in block order
+    std::vector<double> blockEnergy;
+
+    // viscoelasticity (eq. (18)-(20)): per term and relaxed component, one value per slot
+    int nTerms = 0, nComp = 0;
+    bool relaxIso = false, relaxVol = false;
+    std::vector<double> A, B;
+    std::vector<DVec> Yprev, Ycur;
+    bool yComputed = false;
+};
+
+/// Scratch of one chunk (on the stack of the thread running a block).
+struct alignas(64) Chunk {
+    double px[4][3][kLanes];
+    double ev[6][3][kLanes];
+    double l[6][kLanes];
+    double H[6][kLanes];  ///< G D(l) G (symmetric)
+    double I1[kLanes], I2[kLanes], J[kLanes], I4[kLanes], I6[kLanes];
+    double We[kLanes];  ///< element energies Vol W
+    double gk[6][kLanes], Qi[kLanes], Qv[kLanes];  ///< generalised forces Vol dW/dl_k, Vol dW/dJ (iso, vol)
+    double W[kLanes], dI1[kLanes], dI2[kLanes], dI4[kLanes], dI6[kLanes], dJiso[kLanes], dJvol[kLanes];
+    double f[4][3][kLanes];
+    materials::Invariants inv[kLanes];
+    materials::Response resp[kLanes];
+};
+
+/// An inlined built-in law.
+template <class Law>
+struct LawEval {
+    static constexpr bool spring = false;
+    const Law& law;
+    unsigned uses() const { return Law::uses; }
+    void operator()(Chunk& c, double J0) const {
+        // plain auto-vectorisation: "omp simd" would privatise the structs into arrays and fail
+#pragma GCC ivdep
+        for (int j = 0; j < kLanes; ++j) {
+            materials::Invariants in;
+            in.I1 = c.I1[j];
+            in.I2 = c.I2[j];
+            in.J = c.J[j];
+            in.I4 = c.I4[j];
+            in.I6 = c.I6[j];
+            materials::Response r;
+            materials::evaluateLaw(law, in, J0, r);
+            c.W[j] = r.W;
+            c.dI1[j] = r.dI1;
+            c.dI2[j] = r.dI2;
+            c.dI4[j] = r.dI4;
+            c.dI6[j] = r.dI6;
+            c.dJiso[j] = r.dJiso;
+            c.dJvol[j] = r.dJvol;
+        }
+    }
+};
+
+/// Any material: one virtual call per chunk.
+struct GenericEval {
+    static constexpr bool spring = false;
+    const materials::BaseMaterial* m;
+    unsigned usesBits;
+    unsigned uses() const { return usesBits; }
+    void operator()(Chunk& c, double J0) const {
+        for (int j = 0; j < kLanes; ++j) c.inv[j] = materials::Invariants{c.I1[j], c.I2[j], c.J[j], c.I4[j], c.I6[j]};
+        m->evaluate(c.inv, c.resp, kLanes, J0);
+        for (int j = 0; j < kLanes; ++j) {
+            const materials::Response& r = c.resp[j];
+            c.W[j] = r.W;
+            c.dI1[j] = r.dI1;
+            c.dI2[j] = r.dI2;
+            c.dI4[j] = r.dI4;
+            c.dI6[j] = r.dI6;
+            c.dJiso[j] = r.dJiso;
+            c.dJvol[j] = r.dJvol;
+        }
+    }
+};
+
+/// Mass-spring energy of HEML eq. (38).
+struct SpringEval {
+    static constexpr bool spring = true;
+    unsigned uses() const { return 0; }
+};
+
+/// Runs one block at positions x (the state's, 3 doubles per node, when d.directGather; else
+/// HEMLData::xin, 4 per node in internal order): forces into the block's node buffer (when Forces)
+/// and its energy.
+/// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
+template <class Eval, bool Forces, bool Visco>
+double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) {
+    Chunk c;
+    double energy = 0.0;
+    // copy the block's node positions in and clear its buffer
+    if (d.directGather) {
+        // small meshes: straight from the state's positions (they sit in cache), one barrier less
+        for (size_t r = b.rowBegin; r < b.rowEnd; ++r) {
+            const double* p = x + 3 * size_t(d.rowNode[r]);
+            double* q = d.xrow.data() + 4 * r;
+            q[0] = p[0];
+            q[1] = p[1];
+            q[2] = p[2];
+            q[3] = 0.0;
+        }
+    } else {
+        // from the positions in internal order, where the rows of a block are close together
+        for (size_t r = b.rowBegin; r < b.rowEnd; ++r) {
+            const double* p = x + 4 * size_t(d.rowInternal[r]);
+            double* q = d.xrow.data() + 4 * r;
+            for (int k = 0; k < 4; ++k) q[k] = p[k];
+        }
+    }
+    if constexpr (Forces) std::fill(d.buf.data() + 4 * b.rowBegin, d.buf.data() + 4 * b.rowEnd, 0.0);
+    const double* xin = d.xrow.data() + 4 * b.rowBegin;
+    double* buf = d.buf.data() + 4 * b.rowBegin;
+    const unsigned uses = eval.uses();
+    const bool useI4 = (uses & materials::BaseMaterial::UsesI4) != 0;
+    const bool useI6 = (uses & materials::BaseMaterial::UsesI6) != 0;
+
+    for (size_t e0 = b.begin; e0 < b.end; e0 += kLanes) {
+        // gather the four nodes of each element (node rows padded to 4 doubles, in-register
+        // transposes: PERFORMANCE.md lesson 2)
+#if defined(__AVX__)
+        for (int j = 0; j < kLanes; j += 4)
+            for (int a = 0; a < 4; ++a) {
+                const int* nd = d.node[a].data() + e0 + j;
+                __m256d r0 = _mm256_load_pd(xin + 4 * size_t(nd[0]));
+                __m256d r1 = _mm256_load_pd(xin + 4 * size_t(nd[1]));
+                __m256d r2 = _mm256_load_pd(xin + 4 * size_t(nd[2]));
+                __m256d r3 = _mm256_load_pd(xin + 4 * size_t(nd[3]));
+                transpose4(r0, r1, r2, r3);
+                _mm256_store_pd(&c.px[a][0][j], r0);
+                _mm256_store_pd(&c.px[a][1][j], r1);
+                _mm256_store_pd(&c.px[a][2][j], r2);
+            }
+#else
+        for (int j = 0; j < kLanes; ++j)
+            for (int a = 0; a < 4; ++a) {
+                const double* p = xin + 4 * size_t(d.node[a][e0 + j]);
+                c.px[a][0][j] = p[0];
+                c.px[a][1][j] = p[1];
+                c.px[a][2][j] = p[2];
+            }
+#endif
+
+        // edges, squared lengths l_k, invariants (eq. (C.1)) and J
+        const double* vol = d.vol.data() + e0;
+        const double* invDetV = d.invDetV.data() + e0;
+        // (GCC ivdep, not omp simd: omp simd would privatise the small local arrays into memory)
+#pragma GCC ivdep
+        for (int j = 0; j < kLanes; ++j) {
+            double ev[6][3], l[6];
+            for (int k = 0; k < 6; ++k) {
+                for (int q = 0; q < 3; ++q) ev[k][q] = c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j];
+                l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
+                c.l[k][j] = l[k];
+                for (int q = 0; q < 3; ++q) c.ev[k][q][j] = ev[k][q];
+            }
+            // signed volume ratio: det(v1, v2, v3) / det(V1, V2, V3)
+            const double det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
+                               ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
+                               ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
+            c.J[j] = det * invDetV[j];
+            if constexpr (!Eval::spring) {
+                // D(l) of eq. (A.4): D = V^T C V
+                const double D11 = l[0], D22 = l[1], D33 = l[2];
+                const double D12 = 0.5 * (l[0] + l[1] - l[3]), D23 = 0.5 * (l[1] + l[2] - l[4]), D13 = 0.5 * (l[0] + l[2] - l[5]);
+                const double g11 = d.G[0][e0 + j], g22 = d.G[1][e0 + j], g33 = d.G[2][e0 + j];
+                const double g12 = d.G[3][e0 + j], g23 = d.G[4][e0 + j], g13 = d.G[5][e0 + j];
+                // I1 = vtr.l = tr(D G)   (eq. (C.1))
+                const double I1 = D11 * g11 + D22 * g22 + D33 * g33 + 2.0 * (D12 * g12 + D23 * g23 + D13 * g13);
+                // H = G D G, so that (Mtr l)_k = tr(D_k H) and tr(C^2) = l^T Mtr l = tr(D H)
+                const double P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
+                             P13 = g11 * D13 + g12 * D23 + g13 * D33;
+                const double P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
+                             P23 = g12 * D13 + g22 * D23 + g23 * D33;
+                const double P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
+                             P33 = g13 * D13 + g23 * D23 + g33 * D33;
+                const double H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
+                             H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
+                             H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
+                const double trC2 = D11 * H11 + D22 * H22 + D33 * H33 + 2.0 * (D12 * H12 + D23 * H23 + D13 * H13);
+                c.H[0][j] = H11;
+                c.H[1][j] = H22;
+                c.H[2][j] = H33;
+                c.H[3][j] = H12;
+                c.H[4][j] = H23;
+                c.H[5][j] = H13;
+                c.I1[j] = I1;
+                c.I2[j] = 0.5 * (I1 * I1 - trC2);
+                double I4 = 1.0, I6 = 1.0;
+                if (useI4) {
+                    // I4 = a0.C a0 = w.D w, w = V^-1 a0
+                    const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j];
+                    I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+                }
+                if (useI6) {
+                    const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j];
+                    I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+                }
+                c.I4[j] = I4;
+                c.I6[j] = I6;
+            }
+        }
+
+        // the law
+        if constexpr (!Eval::spring) eval(c, d.J0);
+
+        // generalised forces g_k = Vol dW/dl_k (eq. (29), (C.2)-(C.3)) and Vol dW/dJ
+#pragma GCC ivdep
+        for (int j = 0; j < kLanes; ++j) {
+            double g[6], Qiso, Qvol, W;
+            const double V = vol[j];
+            if constexpr (Eval::spring) {
+                // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
+                W = 0.0;
+                for (int k = 0; k < 6; ++k) {
+                    const double L2 = c.l[k][j] > 1e-300 ? c.l[k][j] : 1e-300;
+                    const double len = std::sqrt(L2);
+                    const double kk = d.kk[k][e0 + j], l0 = d.len0[k][e0 + j];
+                    W += 0.5 * kk * (len - l0) * (len - l0);
+                    g[k] = 0.5 * kk * (1.0 - l0 / len);
+                }
+                Qiso = Qvol = 0.0;
+            } else {
+                W = V * c.W[j];
+                // g_k = Vol (dI1 vtr_k + dI2 (I1 vtr_k - (Mtr l)_k) + dI4 a0.C_k a0 + dI6 b0.C_k b0)   (eq. (C.2)-(C.3))
+                //     = Vol tr(D_k Sg),  Sg = dI1 G + dI2 (I1 G - H) + dI4 w w^T + dI6 u u^T
+                const double I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
+                const double a = dI1 + dI2 * I1;
+                double Sg[6];
+                for (int q = 0; q < 6; ++q) Sg[q] = a * d.G[q][e0 + j] - dI2 * c.H[q][j];
+                if (useI4) {
+                    const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j], s4 = c.dI4[j];
+                    Sg[0] += s4 * w1 * w1;
+                    Sg[1] += s4 * w2 * w2;
+                    Sg[2] += s4 * w3 * w3;
+                    Sg[3] += s4 * w1 * w2;
+                    Sg[4] += s4 * w2 * w3;
+                    Sg[5] += s4 * w1 * w3;
+                }
+                if (useI6) {
+                    const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j], s6 = c.dI6[j];
+                    Sg[0] += s6 * w1 * w1;
+                    Sg[1] += s6 * w2 * w2;
+                    Sg[2] += s6 * w3 * w3;
+                    Sg[3] += s6 * w1 * w2;
+                    Sg[4] += s6 * w2 * w3;
+                    Sg[5] += s6 * w1 * w3;
+                }
+                traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
+                for (int k = 0; k < 6; ++k) g[k] *= V;
+                Qiso = V * c.dJiso[j];
+                Qvol = V * c.dJvol[j];
+            }
+            c.We[j] = W;
+            for (int k = 0; k < 6; ++k) c.gk[k][j] = g[k];
+            c.Qi[j] = Qiso;
+            c.Qv[j] = Qvol;
+        }
+
+        if constexpr (Forces && Visco) {
+            // eq. (20): gamma_i^n = A_i f^n + B_i gamma_i^(n-1); eq. (18): f - sum_i gamma_i, on the
+            // generalised forces: g_k and the isochoric J part (apply = isochoric), the volumetric J
+            // part (volumetric), or g_k and the whole J part (both)
+            double rel[7][kLanes];
+            const int nc = d.nComp;
+            for (int q = 0; q < nc; ++q)
+                for (int j = 0; j < kLanes; ++j) {
+                    const double src = !d.relaxIso ? c.Qv[j] : q < 6 ? c.gk[q][j] : d.relaxVol ? c.Qi[j] + c.Qv[j] : c.Qi[j];
+                    rel[q][j] = src;
+                }
+            double sum[7][kLanes] = {};
+            for (int t = 0; t < d.nTerms; ++t) {
+                const double A = d.A[t], Bt = d.B[t];
+                for (int q = 0; q < nc; ++q) {
+                    const double* yp = d.Yprev[size_t(t * nc + q)].data() + e0;
+                    double* yc = d.Ycur[size_t(t * nc + q)].data() + e0;
+#pragma GCC ivdep
+                    for (int j = 0; j < kLanes; ++j) {
+                        const double y = A * rel[q][j] + Bt * yp[j];
+                        yc[j] = y;
+                        sum[q][j] += y;
+                    }
+                }
+            }
+            if (d.relaxIso) {
+                for (int k = 0; k < 6; ++k)
+                    for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
+                for (int j = 0; j < kLanes; ++j) c.Qi[j] -= sum[6][j];  // (Qi + Qv) relaxed as a whole when both
+            } else {
+                for (int j = 0; j < kLanes; ++j) c.Qv[j] -= sum[0][j];
+            }
+        }
+
+        // nodal forces
+        if constexpr (Forces) {
+#pragma GCC ivdep
+            for (int j = 0; j < kLanes; ++j) {
+                double g[6];
+                for (int k = 0; k < 6; ++k) g[k] = c.gk[k][j];
+                const double Qiso = c.Qi[j], Qvol = c.Qv[j];
+                double f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+                // links: -2 g_k (x_a - x_b) on a, the opposite on b (eq. (12)-(13), (B.1)-(B.2))
+                for (int k = 0; k < 6; ++k)
+                    for (int q = 0; q < 3; ++q) {
+                        const double t = 2.0 * g[k] * c.ev[k][q][j];
+                        f[kEdgeA[k]][q] += t;
+                        f[kEdgeB[k]][q] -= t;
+                    }
+                // volume: -Vol dW/dJ dJ/dx_i, dJ/dx_i = d det(v)/dx_i / det(V) (eq. (C.4))
+                const double cJ = (Qiso + Qvol) * invDetV[j];
+                double v1[3], v2[3], v3[3];
+                for (int q = 0; q < 3; ++q) {
+                    v1[q] = c.ev[0][q][j];
+                    v2[q] = c.ev[1][q][j];
+                    v3[q] = c.ev[2][q][j];
+                }
+                const double g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
+                const double g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
+                const double g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
+                for (int q = 0; q < 3; ++q) {
+                    f[1][q] -= cJ * g1[q];
+                    f[2][q] -= cJ * g2[q];
+                    f[3][q] -= cJ * g3[q];
+                    f[0][q] += cJ * (g1[q] + g2[q] + g3[q]);
+                }
+                for (int a = 0; a < 4; ++a)
+                    for (int q = 0; q < 3; ++q) c.f[a][q][j] = f[a][q];
+            }
+        }
+        for (int j = 0; j < kLanes; ++j) energy += c.We[j];
+
+        // scatter into the block's node buffer, in a fixed order (each row loaded, added and stored
+        // before the next, so elements sharing a node add up correctly)
+        if constexpr (Forces) {
+#if defined(__AVX__)
+            for (int j = 0; j < kLanes; j += 4)
+                for (int a = 0; a < 4; ++a) {
+                    __m256d r0 = _mm256_load_pd(&c.f[a][0][j]);
+                    __m256d r1 = _mm256_load_pd(&c.f[a][1][j]);
+                    __m256d r2 = _mm256_load_pd(&c.f[a][2][j]);
+                    __m256d r3 = _mm256_setzero_pd();
+                    transpose4(r0, r1, r2, r3);
+                    const int* nd = d.node[a].data() + e0 + j;
+                    double* p0 = buf + 4 * size_t(nd[0]);
+                    _mm256_store_pd(p0, _mm256_add_pd(_mm256_load_pd(p0), r0));
+                    double* p1 = buf + 4 * size_t(nd[1]);
+                    _mm256_store_pd(p1, _mm256_add_pd(_mm256_load_pd(p1), r1));
+                    double* p2 = buf + 4 * size_t(nd[2]);
+                    _mm256_store_pd(p2, _mm256_add_pd(_mm256_load_pd(p2), r2));
+                    double* p3 = buf + 4 * size_t(nd[3]);
+                    _mm256_store_pd(p3, _mm256_add_pd(_mm256_load_pd(p3), r3));
+                }
+#else
+            for (int j = 0; j < kLanes; ++j)
+                for (int a = 0; a < 4; ++a) {
+                    double* p = buf + 4 * size_t(d.node[a][e0 + j]);
+                    p[0] += c.f[a][0][j];
+                    p[1] += c.f[a][1][j];
+                    p[2] += c.f[a][2][j];
+                }
+#endif
+        }
+    }
+    return energy;
+}
+
+} // namespace fascia::heml

@@ -1,0 +1,164 @@
+#pragma once
+// Scenes built in code for the HEMLForceField tests (the mechanics plugin is not needed): a bare
+// mechanical state and mass, jittered cube meshes, every built-in material.
+#include "HEMLForceField.h"
+#include "fascia/materials/CompressibleMooneyRivlin.h"
+#include "fascia/materials/CompressibleNeoHookean.h"
+#include "fascia/materials/IncompressibleMooneyRivlin.h"
+#include "fascia/materials/IncompressibleNeoHookean.h"
+#include "fascia/materials/NeoHookean.h"
+#include "fascia/materials/Orthotropic.h"
+#include "fascia/materials/StVenantKirchhoff.h"
+#include "fascia/materials/TransverselyIsotropic.h"
+#include "fascia/scene/Node.h"
+
+#include <memory>
+#include <random>
+#include <string>
+
+namespace hemltest {
+
+using namespace fascia;
+
+struct TestState : core::BaseMechanicalState {
+    void setRest(const Positions& X) {
+        m_x0 = X;
+        resize(X.size());
+    }
+};
+
+struct TestMass : core::BaseMass {
+    double rho = 1000;
+    double density() const override { return rho; }
+    void setMasses(std::vector<double> m) { m_masses = std::move(m); }
+};
+
+/// A box of nx*ny*nz cubes of side h, each split into 6 tetrahedra along its main diagonal
+/// (conforming; half of them negatively oriented). Interior nodes jittered by `jitter` h.
+inline MeshData cubeMesh(int nx, int ny, int nz, double h = 0.01, double jitter = 0.15, unsigned seed = 7) {
+    MeshData m;
+    auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                Vec3 p(i * h, j * h, k * h);
+                const bool interior = i > 0 && i < nx && j > 0 && j < ny && k > 0 && k < nz;
+                if (interior) p += jitter * h * Vec3(u(rng), u(rng), u(rng));
+                m.points.push_back(p);
+            }
+    const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                for (const auto& p : perms) {
+                    int c[3] = {0, 0, 0};
+                    std::array<int, 4> t;
+                    t[0] = id(i, j, k);
+                    for (int s = 0; s < 3; ++s) {
+                        c[p[s]] = 1;
+                        t[s + 1] = id(i + c[0], j + c[1], k + c[2]);
+                    }
+                    m.tetrahedra.push_back(t);
+                    m.tetrahedronGroup.push_back(i < nx / 2 ? 1 : 2);
+                }
+    m.groupNames = {{1, "left"}, {2, "right"}};
+    return m;
+}
+
+inline const char* const kMaterials[] = {"StVenantKirchhoff",      "IncompressibleNeoHookean", "IncompressibleMooneyRivlin",
+                                         "CompressibleNeoHookean", "CompressibleMooneyRivlin", "NeoHookean",
+                                         "TransverselyIsotropic",  "Orthotropic"};
+
+/// Adds a material to a node (not initialised).
+inline materials::BaseMaterial& addMaterial(core::Node& n, const std::string& type, const std::string& name) {
+    using namespace materials;
+    if (type == "StVenantKirchhoff") {
+        auto& m = n.add<StVenantKirchhoff>(name);
+        m.m_E.set(3000);
+        m.m_nu.set(0.3);
+        return m;
+    }
+    if (type == "IncompressibleNeoHookean") {
+        auto& m = n.add<IncompressibleNeoHookean>(name);
+        m.m_C1.set(500);
+        return m;
+    }
+    if (type == "IncompressibleMooneyRivlin") {
+        auto& m = n.add<IncompressibleMooneyRivlin>(name);
+        m.m_C1.set(400);
+        m.m_C2.set(150);
+        return m;
+    }
+    if (type == "CompressibleNeoHookean") {
+        auto& m = n.add<CompressibleNeoHookean>(name);
+        m.m_mu.set(1000);
+        m.m_lambda.set(4000);
+        return m;
+    }
+    if (type == "CompressibleMooneyRivlin") {
+        auto& m = n.add<CompressibleMooneyRivlin>(name);
+        m.m_C1.set(400);
+        m.m_C2.set(150);
+        m.m_kappa.set(20000);
+        return m;
+    }
+    if (type == "NeoHookean") {
+        auto& m = n.add<NeoHookean>(name);
+        m.m_mu.set(1000);
+        m.m_kappa.set(20000);
+        return m;
+    }
+    if (type == "TransverselyIsotropic") {
+        auto& m = n.add<TransverselyIsotropic>(name);
+        m.m_mu.set(1000);
+        m.m_kappa.set(20000);
+        m.m_eta.set(2000);
+        m.m_dir.set(Vec3(1, 1, 0.5));
+        return m;
+    }
+    auto& m = n.add<Orthotropic>(name);
+    m.m_mu.set(1000);
+    m.m_kappa.set(20000);
+    m.m_eta.set(2000);
+    m.m_eta2.set(700);
+    m.m_dir.set(Vec3(1, 1, 0));
+    m.m_dir2.set(Vec3(-1, 1, 0.0));
+    return m;
+}
+
+/// A node with a state, a mass, materials and a force field, initialised in dependency order.
+struct Scene {
+    core::Node root{"root"};
+    TestState* state = nullptr;
+    TestMass* mass = nullptr;
+    heml::HEMLForceField* ff = nullptr;
+
+    explicit Scene(const MeshData& mesh) {
+        state = &root.add<TestState>("mo");
+        state->setRest(mesh.points);
+        mass = &root.add<TestMass>("mass");
+        ff = &root.add<heml::HEMLForceField>("ff");
+        ff->m_mesh.set(mesh);
+    }
+    /// Initialises every component (materials first, the force field last).
+    void init() {
+        for (auto& c : root.components())
+            if (c.get() != ff) c->init();
+        ff->init();
+    }
+    Positions forces() {
+        Positions f(state->size(), Vec3::Zero());
+        ff->addForce(*state, f, 0.0);
+        return f;
+    }
+};
+
+inline double maxNorm(const Positions& f) {
+    double m = 0;
+    for (const auto& v : f) m = std::max(m, v.norm());
+    return m;
+}
+
+} // namespace hemltest

@@ -1,0 +1,20 @@
+#pragma once
+#include "fascia/materials/Laws.h"
+
+namespace fascia::materials {
+
+/// Compressible Mooney-Rivlin with the isochoric/volumetric split of HEML eq. (21)-(25):
+///   W = C1 (I1bar - 3) + C2 (I2bar - 3) + kappa/2 (J - 1)^2
+/// (volumetric term kappa/2 (J - 1)^2). Stress-free at rest; shear modulus 2 (C1 + C2), bulk kappa.
+class CompressibleMooneyRivlin : public Material<CompressibleMooneyRivlinLaw> {
+public:
+    void init() override;
+    double shearModulus() const override { return 2.0 * (m_law.C1 + m_law.C2); }
+    double bulkModulus() const override { return m_law.kappa; }
+
+    core::Param<double> m_C1{this, core::ParamSpec("C1").unit("Pa").required().help("coefficient C1 of C1 (I1bar - 3)")};
+    core::Param<double> m_C2{this, core::ParamSpec("C2").unit("Pa").help("coefficient C2 of C2 (I2bar - 3)"), 0.0};
+    core::Param<double> m_kappa{this, core::ParamSpec("kappa").unit("Pa").above(0).required().help("bulk modulus kappa of the volumetric term kappa/2 (J - 1)^2")};
+};
+
+} // namespace fascia::materials

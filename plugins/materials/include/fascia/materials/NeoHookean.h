@@ -1,0 +1,21 @@
+#pragma once
+#include "fascia/materials/Laws.h"
+
+namespace fascia::materials {
+
+/// Neo-Hookean with the isochoric split (TLED eq. (9), (31)-(32) without fibres):
+///   W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2.
+/// Moduli: mu and kappa, or youngModulus and poissonRatio. Stress-free at rest.
+class NeoHookean : public Material<NeoHookeanLaw> {
+public:
+    void init() override;
+    double shearModulus() const override { return m_law.mu; }
+    double bulkModulus() const override { return m_law.kappa; }
+
+    core::Param<double> m_mu{this, core::ParamSpec("mu").unit("Pa").above(0).help("shear modulus mu")};
+    core::Param<double> m_kappa{this, core::ParamSpec("kappa").unit("Pa").above(0).help("bulk modulus kappa of kappa/2 (J - 1)^2")};
+    core::Param<double> m_E{this, core::ParamSpec("youngModulus").unit("Pa").above(0).help("Young's modulus E (with poissonRatio, instead of mu and kappa)")};
+    core::Param<double> m_nu{this, core::ParamSpec("poissonRatio").min(-1, true).below(0.5).help("Poisson's ratio nu (with youngModulus)")};
+};
+
+} // namespace fascia::materials

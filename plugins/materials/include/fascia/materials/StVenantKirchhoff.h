@@ -1,0 +1,21 @@
+#pragma once
+#include "fascia/materials/Laws.h"
+
+namespace fascia::materials {
+
+/// Saint Venant-Kirchhoff material (HEML Table 3): W = lambda/2 (tr E)^2 + mu tr(E^2).
+/// Moduli: lambda and mu, or youngModulus and poissonRatio. No volumetric term; softens under
+/// strong compression (HEML section 4.2). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
+class StVenantKirchhoff : public Material<StVenantKirchhoffLaw> {
+public:
+    void init() override;
+    double shearModulus() const override { return m_law.mu; }
+    double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }
+
+    core::Param<double> m_lambda{this, core::ParamSpec("lambda").unit("Pa").help("first Lame coefficient lambda (or give youngModulus and poissonRatio)")};
+    core::Param<double> m_mu{this, core::ParamSpec("mu").unit("Pa").above(0).help("shear modulus mu, the second Lame coefficient")};
+    core::Param<double> m_E{this, core::ParamSpec("youngModulus").unit("Pa").above(0).help("Young's modulus E (with poissonRatio, instead of lambda and mu)")};
+    core::Param<double> m_nu{this, core::ParamSpec("poissonRatio").min(-1, true).below(0.5).help("Poisson's ratio nu (with youngModulus)")};
+};
+
+} // namespace fascia::materials

@@ -1,0 +1,1202 @@
+#include "TLEDForceField.h"
+
+#include "ViscoelasticProny.h"
+#include "fascia/base/Error.h"
+#include "fascia/materials/Laws.h"
+#include "fascia/scene/Node.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace fascia::tled {
+
+using materials::BaseMaterial;
+using materials::Invariants;
+using materials::Response;
+
+namespace {
+
+/// Elements per block of the deterministic reduction (fixed: never depends on the thread count).
+constexpr size_t kBlockElements = 2048;
+/// Elements per batch inside a block: F, invariants and responses of a batch stay in L1.
+constexpr int kBatch = 32;
+/// Nodes per tile of the buffer reduction.
+constexpr int kNodeTile = 4096;
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+}
+
+/// AoS (m values per element) -> SoA (row c - first holds component c of every element), rows first..m-1.
+std::vector<double> transposeRows(const std::vector<double>& aos, size_t m, size_t first = 0) {
+    const size_t n = aos.size() / m;
+    std::vector<double> out((m - first) * n);
+    for (size_t e = 0; e < n; ++e)
+        for (size_t c = first; c < m; ++c) out[(c - first) * n + e] = aos[e * m + c];
+    return out;
+}
+
+/// Precomputed data of one element kind, in internal order (grouped by material). Filled element by
+/// element (AoS), then turned into structure-of-arrays by finish(): row c of an array holds
+/// component c of every element (index c * size() + e).
+template <int NN>
+struct ElementSet {
+    std::vector<int> nodes;     ///< NN per element (AoS)
+    std::vector<double> dN;     ///< dN_a/dX: rows 3a + j (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3))
+    std::vector<double> vol;    ///< rest volume (m^3)
+    std::vector<double> a0, b0; ///< fibre directions, rows x y z (empty when no law uses them)
+    std::vector<int> orig;      ///< index in the input list of its kind
+    std::vector<double> length; ///< characteristic length L_e (m)
+    std::vector<double> gamma;  ///< hexahedra: hourglass vectors, rows 8q + a
+    std::vector<double> hgK;    ///< hexahedra: hourglass stiffness K (N/m)
+    size_t size() const { return vol.size(); }
+    void finish() {
+        if (size() == 0) return;
+        dN = NN == 4 ? transposeRows(dN, 12, 3) : transposeRows(dN, 24);
+        if (!a0.empty()) a0 = transposeRows(a0, 3);
+        if (!b0.empty()) b0 = transposeRows(b0, 3);
+        if (!gamma.empty()) gamma = transposeRows(gamma, 32);
+    }
+};
+
+// natural coordinates of the 8 nodes of a hexahedron, VTK order
+constexpr double kHexXi[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+// hourglass base vectors xi eta, eta zeta, zeta xi, xi eta zeta at the nodes (Flanagan-Belytschko)
+constexpr double kHourglass[4][8] = {{1, -1, 1, -1, 1, -1, 1, -1},
+                                     {1, 1, -1, -1, -1, -1, 1, 1},
+                                     {1, -1, -1, 1, -1, 1, 1, -1},
+                                     {-1, 1, -1, 1, 1, -1, 1, -1}};
+constexpr int kHexFaces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+double det3(const double m[9]) {
+    return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+}
+/// cofactor matrix (row-major): cof(M) = det(M) M^-T
+void cof3(const double m[9], double c[9]) {
+    c[0] = m[4] * m[8] - m[5] * m[7];
+    c[1] = m[5] * m[6] - m[3] * m[8];
+    c[2] = m[3] * m[7] - m[4] * m[6];
+    c[3] = m[2] * m[7] - m[1] * m[8];
+    c[4] = m[0] * m[8] - m[2] * m[6];
+    c[5] = m[1] * m[6] - m[0] * m[7];
+    c[6] = m[1] * m[5] - m[2] * m[4];
+    c[7] = m[2] * m[3] - m[0] * m[5];
+    c[8] = m[0] * m[4] - m[1] * m[3];
+}
+
+/// One Prony series acting on the isochoric and/or volumetric part of S.
+struct ViscoSet {
+    viscoelastic::ViscoelasticProny* prony = nullptr;
+    bool iso = false, vol = false;
+    int terms = 0;
+    std::vector<double> A, B;
+    std::vector<double> Yprev, Ycur;  ///< 6 per (element, term), element-major, internal global order
+};
+
+} // namespace
+
+/// What a kernel call writes (any output may be null).
+struct KernelIO {
+    const double* u = nullptr; ///< nodal displacements x - X, 4 per node (padded)
+    double* buf = nullptr;     ///< the block's node buffer (4 per node from Block::nodeLo, padded)
+    double* energy = nullptr;  ///< energy of the block (added to)
+    double* S = nullptr;       ///< 6 per cell (cell order)
+    double* F = nullptr;       ///< 9 per cell (cell order)
+    const double* Yhist[2] = {nullptr, nullptr};
+    double* Ynew[2] = {nullptr, nullptr};
+};
+
+struct TLEDForceField::Impl {
+    using KernelFn = void (*)(const Impl&, const Block&, const KernelIO&);
+    struct Group {
+        int kind = 0;
+        const BaseMaterial* material = nullptr;
+        unsigned uses = 0;
+        double pModulus = 0;        ///< bulk + 4/3 shear (Pa)
+        const void* law = nullptr;  ///< the inlined law, when the material is a built-in one
+        KernelFn fn = nullptr;
+    };
+    ElementSet<4> tet;
+    ElementSet<8> hex;
+    std::vector<Group> groups;
+    std::vector<ViscoSet> visco;
+    double J0 = 0.4;
+    size_t nodeCount = 0;  ///< 1 + largest node index
+    size_t nTetCells = 0;  ///< number of tetrahedra (cell offset of the hexahedra)
+    bool haveCur = false;
+    double curTime = 0;
+    std::vector<double> buf;
+    std::vector<double> u;  ///< displacements of the last addForce, 4 per node
+
+    template <int NN> const ElementSet<NN>& set() const {
+        if constexpr (NN == 4) return tet; else return hex;
+    }
+    template <int NN> ElementSet<NN>& set() {
+        if constexpr (NN == 4) return tet; else return hex;
+    }
+    size_t globalOffset(int kind) const { return kind == 0 ? 0 : tet.size(); }
+};
+
+namespace {
+
+using Impl = TLEDForceField::Impl;
+
+/// Per-batch scratch of the element loop, as structure of arrays (index k = element in the batch).
+template <int NN>
+struct Batch {
+    alignas(64) double u[NN][3][kBatch];   ///< nodal displacements x - X
+    alignas(64) double F[9][kBatch];       ///< deformation gradient, row-major
+    alignas(64) double I1[kBatch], I2[kBatch], J[kBatch], I4[kBatch], I6[kBatch];
+    alignas(64) double W[kBatch], d1[kBatch], d2[kBatch], d4[kBatch], d6[kBatch], dJi[kBatch], dJv[kBatch];
+    alignas(64) double P[9][kBatch];       ///< first Piola-Kirchhoff stress, row-major
+    alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
+};
+
+/// The element loop of one block, in short passes over batches of elements (PERFORMANCE.md lessons
+/// 1-3): gather displacements; F and the invariants; the law for the whole batch; P; nodal forces;
+/// scatter into the block's node buffer.
+/// U: the invariants the law uses (BaseMaterial::Uses bits), a compile-time constant so that the
+/// vector loops carry no dead branches (and no masked loads from absent fibre arrays).
+template <int NN, unsigned U, class Block, class Eval>
+void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO& io) {
+    const ElementSet<NN>& es = im.template set<NN>();
+    constexpr bool useI2 = (U & BaseMaterial::UsesI2) != 0;
+    constexpr bool useI4 = (U & BaseMaterial::UsesI4) != 0;
+    constexpr bool useI6 = (U & BaseMaterial::UsesI6) != 0;
+    const bool visco = !im.visco.empty();
+    const bool needS = visco || io.S || io.F;
+    const size_t gOff = im.globalOffset(NN == 4 ? 0 : 1);
+    const size_t cellOff = NN == 4 ? 0 : im.nTetCells;
+    const size_t ne = es.size();
+    const double* __restrict dN = es.dN.data();
+    const double* __restrict A0 = es.a0.data();
+    const double* __restrict B0 = es.b0.data();
+    const double* __restrict vol = es.vol.data();
+    const double* __restrict u4 = io.u;
+
+    Batch<NN> s;
+    double energy = 0;
+
+    for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
+        const int n = static_cast<int>(std::min<size_t>(kBatch, b.end - e0));
+
+        // gather u = x - X (precomputed per node, padded to 4; forming F from displacements keeps it
+        // accurate, lesson 6)
+        for (int k = 0; k < n; ++k) {
+            const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
+            for (int a = 0; a < NN; ++a) {
+                const double* up = u4 + 4 * static_cast<size_t>(nd[a]);
+                s.u[a][0][k] = up[0];
+                s.u[a][1][k] = up[1];
+                s.u[a][2][k] = up[2];
+            }
+        }
+
+        // F = I + sum_a u_a (x) dN_a/dX and the invariants of C = F^T F
+#pragma omp simd
+        for (int k = 0; k < n; ++k) {
+            const size_t e = e0 + static_cast<size_t>(k);
+            double F0 = 1, F1 = 0, F2 = 0, F3 = 0, F4 = 1, F5 = 0, F6 = 0, F7 = 0, F8 = 1;
+            if constexpr (NN == 4) {
+                // dN_0 = -(dN_1 + dN_2 + dN_3): sum_a u_a dN_a = sum_{a>0} (u_a - u_0) dN_a
+                for (int a = 1; a < 4; ++a) {
+                    const double g0 = dN[(3 * (a - 1)) * ne + e], g1 = dN[(3 * (a - 1) + 1) * ne + e],
+                                 g2 = dN[(3 * (a - 1) + 2) * ne + e];
+                    const double v0 = s.u[a][0][k] - s.u[0][0][k], v1 = s.u[a][1][k] - s.u[0][1][k],
+                                 v2 = s.u[a][2][k] - s.u[0][2][k];
+                    F0 += v0 * g0; F1 += v0 * g1; F2 += v0 * g2;
+                    F3 += v1 * g0; F4 += v1 * g1; F5 += v1 * g2;
+                    F6 += v2 * g0; F7 += v2 * g1; F8 += v2 * g2;
+                }
+            } else {
+                for (int a = 0; a < NN; ++a) {
+                    const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
+                    const double v0 = s.u[a][0][k], v1 = s.u[a][1][k], v2 = s.u[a][2][k];
+                    F0 += v0 * g0; F1 += v0 * g1; F2 += v0 * g2;
+                    F3 += v1 * g0; F4 += v1 * g1; F5 += v1 * g2;
+                    F6 += v2 * g0; F7 += v2 * g1; F8 += v2 * g2;
+                }
+            }
+            s.F[0][k] = F0; s.F[1][k] = F1; s.F[2][k] = F2;
+            s.F[3][k] = F3; s.F[4][k] = F4; s.F[5][k] = F5;
+            s.F[6][k] = F6; s.F[7][k] = F7; s.F[8][k] = F8;
+            const double C00 = F0 * F0 + F3 * F3 + F6 * F6;
+            const double C11 = F1 * F1 + F4 * F4 + F7 * F7;
+            const double C22 = F2 * F2 + F5 * F5 + F8 * F8;
+            const double I1 = C00 + C11 + C22;
+            s.I1[k] = I1;
+            s.J[k] = F0 * (F4 * F8 - F5 * F7) - F1 * (F3 * F8 - F5 * F6) + F2 * (F3 * F7 - F4 * F6);
+            double I2 = 3;
+            if constexpr (useI2) {
+                const double C01 = F0 * F1 + F3 * F4 + F6 * F7;
+                const double C02 = F0 * F2 + F3 * F5 + F6 * F8;
+                const double C12 = F1 * F2 + F4 * F5 + F7 * F8;
+                I2 = 0.5 * (I1 * I1 - (C00 * C00 + C11 * C11 + C22 * C22 + 2 * (C01 * C01 + C02 * C02 + C12 * C12)));
+            }
+            s.I2[k] = I2;
+            double I4 = 1, I6 = 1;
+            if constexpr (useI4) {
+                const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                const double f0 = F0 * a0 + F1 * a1 + F2 * a2, f1 = F3 * a0 + F4 * a1 + F5 * a2, f2 = F6 * a0 + F7 * a1 + F8 * a2;
+                I4 = f0 * f0 + f1 * f1 + f2 * f2;  // a0 . C a0
+            }
+            if constexpr (useI6) {
+                const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                const double f0 = F0 * b0 + F1 * b1 + F2 * b2, f1 = F3 * b0 + F4 * b1 + F5 * b2, f2 = F6 * b0 + F7 * b1 + F8 * b2;
+                I6 = f0 * f0 + f1 * f1 + f2 * f2;  // b0 . C b0
+            }
+            s.I4[k] = I4;
+            s.I6[k] = I6;
+        }
+
+        // the law: W and dW/dI for the whole batch (inlined for built-in laws, one call otherwise)
+        eval(s, n);
+
+        if (!needS) {
+            // P = 2 dI1 F + 2 dI2 (I1 F - F C) + 2 dI4 (F a0)(x)a0 + 2 dI6 (F b0)(x)b0 + dW/dJ cof F
+#pragma omp simd
+            for (int k = 0; k < n; ++k) {
+                const size_t e = e0 + static_cast<size_t>(k);
+                const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
+                             F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
+                const double c1 = 2 * s.d1[k], cj = s.dJi[k] + s.dJv[k];
+                double P0 = c1 * F0 + cj * (F4 * F8 - F5 * F7), P1 = c1 * F1 + cj * (F5 * F6 - F3 * F8),
+                       P2 = c1 * F2 + cj * (F3 * F7 - F4 * F6), P3 = c1 * F3 + cj * (F2 * F7 - F1 * F8),
+                       P4 = c1 * F4 + cj * (F0 * F8 - F2 * F6), P5 = c1 * F5 + cj * (F1 * F6 - F0 * F7),
+                       P6 = c1 * F6 + cj * (F1 * F5 - F2 * F4), P7 = c1 * F7 + cj * (F2 * F3 - F0 * F5),
+                       P8 = c1 * F8 + cj * (F0 * F4 - F1 * F3);
+                if constexpr (useI2) {
+                    // I1 F - F C with F C = (F F^T) F
+                    const double c2 = 2 * s.d2[k], I1 = s.I1[k];
+                    const double B00 = F0 * F0 + F1 * F1 + F2 * F2, B11 = F3 * F3 + F4 * F4 + F5 * F5,
+                                 B22 = F6 * F6 + F7 * F7 + F8 * F8, B01 = F0 * F3 + F1 * F4 + F2 * F5,
+                                 B02 = F0 * F6 + F1 * F7 + F2 * F8, B12 = F3 * F6 + F4 * F7 + F5 * F8;
+                    P0 += c2 * (I1 * F0 - (B00 * F0 + B01 * F3 + B02 * F6));
+                    P1 += c2 * (I1 * F1 - (B00 * F1 + B01 * F4 + B02 * F7));
+                    P2 += c2 * (I1 * F2 - (B00 * F2 + B01 * F5 + B02 * F8));
+                    P3 += c2 * (I1 * F3 - (B01 * F0 + B11 * F3 + B12 * F6));
+                    P4 += c2 * (I1 * F4 - (B01 * F1 + B11 * F4 + B12 * F7));
+                    P5 += c2 * (I1 * F5 - (B01 * F2 + B11 * F5 + B12 * F8));
+                    P6 += c2 * (I1 * F6 - (B02 * F0 + B12 * F3 + B22 * F6));
+                    P7 += c2 * (I1 * F7 - (B02 * F1 + B12 * F4 + B22 * F7));
+                    P8 += c2 * (I1 * F8 - (B02 * F2 + B12 * F5 + B22 * F8));
+                }
+                if constexpr (useI4) {
+                    const double c4 = 2 * s.d4[k];
+                    const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                    const double f0 = c4 * (F0 * a0 + F1 * a1 + F2 * a2), f1 = c4 * (F3 * a0 + F4 * a1 + F5 * a2),
+                                 f2 = c4 * (F6 * a0 + F7 * a1 + F8 * a2);
+                    P0 += f0 * a0; P1 += f0 * a1; P2 += f0 * a2;
+                    P3 += f1 * a0; P4 += f1 * a1; P5 += f1 * a2;
+                    P6 += f2 * a0; P7 += f2 * a1; P8 += f2 * a2;
+                }
+                if constexpr (useI6) {
+                    const double c6 = 2 * s.d6[k];
+                    const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                    const double f0 = c6 * (F0 * b0 + F1 * b1 + F2 * b2), f1 = c6 * (F3 * b0 + F4 * b1 + F5 * b2),
+                                 f2 = c6 * (F6 * b0 + F7 * b1 + F8 * b2);
+                    P0 += f0 * b0; P1 += f0 * b1; P2 += f0 * b2;
+                    P3 += f1 * b0; P4 += f1 * b1; P5 += f1 * b2;
+                    P6 += f2 * b0; P7 += f2 * b1; P8 += f2 * b2;
+                }
+                s.P[0][k] = P0; s.P[1][k] = P1; s.P[2][k] = P2;
+                s.P[3][k] = P3; s.P[4][k] = P4; s.P[5][k] = P5;
+                s.P[6][k] = P6; s.P[7][k] = P7; s.P[8][k] = P8;
+            }
+        } else {
+            for (int k = 0; k < n; ++k) {
+                const size_t e = e0 + static_cast<size_t>(k);
+                double F[9], cf[9];
+                for (int i = 0; i < 9; ++i) F[i] = s.F[i][k];
+                cof3(F, cf);
+                const double c1 = 2 * s.d1[k], c2 = 2 * s.d2[k], c4 = 2 * s.d4[k], c6 = 2 * s.d6[k];
+                // S in 6 components (xx yy zz xy yz xz): isochoric and volumetric parts, TLED eq. (10)
+                const double J = s.J[k];
+                const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
+                // J C^-1 = cof(F)^T cof(F) / J
+                double JCi[6];
+                JCi[0] = (cf[0] * cf[0] + cf[3] * cf[3] + cf[6] * cf[6]) * iJ;
+                JCi[1] = (cf[1] * cf[1] + cf[4] * cf[4] + cf[7] * cf[7]) * iJ;
+                JCi[2] = (cf[2] * cf[2] + cf[5] * cf[5] + cf[8] * cf[8]) * iJ;
+                JCi[3] = (cf[0] * cf[1] + cf[3] * cf[4] + cf[6] * cf[7]) * iJ;
+                JCi[4] = (cf[1] * cf[2] + cf[4] * cf[5] + cf[7] * cf[8]) * iJ;
+                JCi[5] = (cf[0] * cf[2] + cf[3] * cf[5] + cf[6] * cf[8]) * iJ;
+                double Siso[6] = {c1, c1, c1, 0, 0, 0};
+                if constexpr (useI2) {
+                    const double C[6] = {F[0] * F[0] + F[3] * F[3] + F[6] * F[6], F[1] * F[1] + F[4] * F[4] + F[7] * F[7],
+                                         F[2] * F[2] + F[5] * F[5] + F[8] * F[8], F[0] * F[1] + F[3] * F[4] + F[6] * F[7],
+                                         F[1] * F[2] + F[4] * F[5] + F[7] * F[8], F[0] * F[2] + F[3] * F[5] + F[6] * F[8]};
+                    for (int i = 0; i < 3; ++i) Siso[i] += c2 * (s.I1[k] - C[i]);
+                    for (int i = 3; i < 6; ++i) Siso[i] -= c2 * C[i];
+                }
+                if constexpr (useI4) {
+                    const double a[3] = {A0[e], A0[ne + e], A0[2 * ne + e]};
+                    Siso[0] += c4 * a[0] * a[0]; Siso[1] += c4 * a[1] * a[1]; Siso[2] += c4 * a[2] * a[2];
+                    Siso[3] += c4 * a[0] * a[1]; Siso[4] += c4 * a[1] * a[2]; Siso[5] += c4 * a[0] * a[2];
+                }
+                if constexpr (useI6) {
+                    const double bb[3] = {B0[e], B0[ne + e], B0[2 * ne + e]};
+                    Siso[0] += c6 * bb[0] * bb[0]; Siso[1] += c6 * bb[1] * bb[1]; Siso[2] += c6 * bb[2] * bb[2];
+                    Siso[3] += c6 * bb[0] * bb[1]; Siso[4] += c6 * bb[1] * bb[2]; Siso[5] += c6 * bb[0] * bb[2];
+                }
+                double Svol[6], S[6];
+                for (int i = 0; i < 6; ++i) {
+                    Siso[i] += s.dJi[k] * JCi[i];
+                    Svol[i] = s.dJv[k] * JCi[i];
+                    S[i] = Siso[i] + Svol[i];
+                }
+                // viscoelastic relaxation: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1)
+                // (TLED eq. (24), (30)), Phi the relaxing part of the hyperelastic stress
+                for (size_t v = 0; v < im.visco.size(); ++v) {
+                    const ViscoSet& vs = im.visco[v];
+                    double R[6];
+                    for (int i = 0; i < 6; ++i) R[i] = (vs.iso ? Siso[i] : 0.0) + (vs.vol ? Svol[i] : 0.0);
+                    const size_t base = (gOff + e) * static_cast<size_t>(vs.terms) * 6;
+                    const double* Yh = io.Yhist[v] + base;
+                    double* Yn = io.Ynew[v] ? io.Ynew[v] + base : nullptr;
+                    // (no coefficients yet, i.e. no time step: no relaxation)
+                    const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+                    for (int t = 0; t < terms; ++t) {
+                        const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+                        for (int i = 0; i < 6; ++i) {
+                            const double Y = A * R[i] + Bc * Yh[6 * t + i];
+                            S[i] -= Y;
+                            if (Yn) Yn[6 * t + i] = Y;
+                        }
+                    }
+                }
+                // P = F S
+                for (int i = 0; i < 3; ++i) {
+                    const double f0 = F[3 * i], f1 = F[3 * i + 1], f2 = F[3 * i + 2];
+                    s.P[3 * i + 0][k] = f0 * S[0] + f1 * S[3] + f2 * S[5];
+                    s.P[3 * i + 1][k] = f0 * S[3] + f1 * S[1] + f2 * S[4];
+                    s.P[3 * i + 2][k] = f0 * S[5] + f1 * S[4] + f2 * S[2];
+                }
+                const size_t cell = cellOff + static_cast<size_t>(es.orig[e]);
+                if (io.S)
+                    for (int i = 0; i < 6; ++i) io.S[6 * cell + static_cast<size_t>(i)] = S[i];
+                if (io.F)
+                    for (int i = 0; i < 9; ++i) io.F[9 * cell + static_cast<size_t>(i)] = F[i];
+            }
+        }
+
+        if (io.energy)
+            for (int k = 0; k < n; ++k) energy += vol[e0 + static_cast<size_t>(k)] * s.W[k];
+
+        if (io.buf) {
+            // f_a = -V P dN_a/dX (TLED eq. (1)-(3))
+#pragma omp simd
+            for (int k = 0; k < n; ++k) {
+                const size_t e = e0 + static_cast<size_t>(k);
+                const double V = vol[e];
+                const double P0 = V * s.P[0][k], P1 = V * s.P[1][k], P2 = V * s.P[2][k], P3 = V * s.P[3][k],
+                             P4 = V * s.P[4][k], P5 = V * s.P[5][k], P6 = V * s.P[6][k], P7 = V * s.P[7][k],
+                             P8 = V * s.P[8][k];
+                if constexpr (NN == 4) {
+                    double s0 = 0, s1 = 0, s2 = 0;
+                    for (int a = 1; a < 4; ++a) {
+                        const double g0 = dN[(3 * (a - 1)) * ne + e], g1 = dN[(3 * (a - 1) + 1) * ne + e],
+                                     g2 = dN[(3 * (a - 1) + 2) * ne + e];
+                        const double f0 = -(P0 * g0 + P1 * g1 + P2 * g2), f1 = -(P3 * g0 + P4 * g1 + P5 * g2),
+                                     f2 = -(P6 * g0 + P7 * g1 + P8 * g2);
+                        s.f[a][0][k] = f0;
+                        s.f[a][1][k] = f1;
+                        s.f[a][2][k] = f2;
+                        s0 += f0;
+                        s1 += f1;
+                        s2 += f2;
+                    }
+                    s.f[0][0][k] = -s0;
+                    s.f[0][1][k] = -s1;
+                    s.f[0][2][k] = -s2;
+                } else {
+                    for (int a = 0; a < NN; ++a) {
+                        const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
+                        s.f[a][0][k] = -(P0 * g0 + P1 * g1 + P2 * g2);
+                        s.f[a][1][k] = -(P3 * g0 + P4 * g1 + P5 * g2);
+                        s.f[a][2][k] = -(P6 * g0 + P7 * g1 + P8 * g2);
+                    }
+                }
+            }
+        }
+
+        if constexpr (NN == 8) {
+            // hourglass control: f_a -= K sum_q gamma_qa h_q, h_q = sum_b gamma_qb u_b; energy K/2 sum_q |h_q|^2
+            if (io.buf || io.energy) {
+                const double* __restrict gam = es.gamma.data();
+                const double* __restrict hgK = es.hgK.data();
+                for (int k = 0; k < n; ++k) {
+                    const size_t e = e0 + static_cast<size_t>(k);
+                    const double K = hgK[e];
+                    if (!(K > 0)) continue;
+                    for (int q = 0; q < 4; ++q) {
+                        double h0 = 0, h1 = 0, h2 = 0;
+                        for (int a = 0; a < 8; ++a) {
+                            const double g = gam[(8 * q + a) * ne + e];
+                            h0 += g * s.u[a][0][k];
+                            h1 += g * s.u[a][1][k];
+                            h2 += g * s.u[a][2][k];
+                        }
+                        if (io.energy) energy += 0.5 * K * (h0 * h0 + h1 * h1 + h2 * h2);
+                        if (io.buf)
+                            for (int a = 0; a < 8; ++a) {
+                                const double g = K * gam[(8 * q + a) * ne + e];
+                                s.f[a][0][k] -= g * h0;
+                                s.f[a][1][k] -= g * h1;
+                                s.f[a][2][k] -= g * h2;
+                            }
+                    }
+                }
+            }
+        }
+
+        if (io.buf) {
+            // scatter into the block's node buffer
+            double* __restrict buf = io.buf;
+            for (int k = 0; k < n; ++k) {
+                const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
+                for (int a = 0; a < NN; ++a) {
+                    double* fa = buf + 4 * static_cast<size_t>(nd[a] - b.nodeLo);
+                    fa[0] += s.f[a][0][k];
+                    fa[1] += s.f[a][1][k];
+                    fa[2] += s.f[a][2][k];
+                }
+            }
+        }
+    }
+    if (io.energy) *io.energy += energy;
+}
+
+/// materials::evaluateLaw (HEML section 4.4 treatment below J0) written without a branch, so that
+/// the batch loop vectorises: the isochoric part at max(J, J0) (its J derivative dropped below J0),
+/// the volumetric part continued along its second-order Taylor polynomial at J0 below J0. Same values
+/// as evaluateLaw: above J0 the Taylor terms are exactly zero.
+template <class Law>
+inline void evaluateLawSelect(const Law& law, const Invariants& in, double J0, Response& r) {
+    const bool below = in.J < J0;
+    Invariants c = in;
+    c.J = below ? J0 : in.J;
+    r = Response{};
+    law.isochoric(c, r);
+    r.dJiso = below ? 0.0 : r.dJiso;
+    double W0, dW0, d2W0;
+    law.volumetric(c.J, W0, dW0, d2W0);
+    const double d = in.J - c.J;  // 0 above J0
+    r.W += below ? W0 + dW0 * d + 0.5 * d2W0 * d * d : W0;
+    r.dJvol = below ? dW0 + d2W0 * d : dW0;
+}
+
+/// Copies a batch's response arrays out of law results.
+template <class S>
+inline void storeResponse(S& s, int k, const Response& r) {
+    s.W[k] = r.W;
+    s.d1[k] = r.dI1;
+    s.d2[k] = r.dI2;
+    s.d4[k] = r.dI4;
+    s.d6[k] = r.dI6;
+    s.dJi[k] = r.dJiso;
+    s.dJv[k] = r.dJvol;
+}
+
+template <int NN, class Law, class Block>
+void kernelLaw(const Impl& im, const Block& b, const KernelIO& io) {
+    const Law law = *static_cast<const Law*>(im.groups[static_cast<size_t>(b.group)].law);
+    const double J0 = im.J0;
+    runKernel<NN, Law::uses>(im, b,
+                  [&](auto& s, int n) {
+                      // no 'omp simd' here: it would turn the structs into arrays of structs and stop
+                      // the vectoriser; plain auto-vectorisation scalarises them
+                      for (int k = 0; k < n; ++k) {
+                          Invariants in;
+                          in.I1 = s.I1[k];
+                          in.I2 = s.I2[k];
+                          in.J = s.J[k];
+                          in.I4 = s.I4[k];
+                          in.I6 = s.I6[k];
+                          Response r;
+                          evaluateLawSelect(law, in, J0, r);
+                          storeResponse(s, k, r);
+                      }
+                  },
+                  io);
+}
+
+template <int NN, unsigned U, class Block>
+void kernelGeneric(const Impl& im, const Block& b, const KernelIO& io) {
+    const BaseMaterial* m = im.groups[static_cast<size_t>(b.group)].material;
+    const double J0 = im.J0;
+    runKernel<NN, U>(im, b,
+                  [&](auto& s, int n) {
+                      Invariants in[kBatch];
+                      Response out[kBatch];
+                      for (int k = 0; k < n; ++k) {
+                          in[k].I1 = s.I1[k];
+                          in[k].I2 = s.I2[k];
+                          in[k].J = s.J[k];
+                          in[k].I4 = s.I4[k];
+                          in[k].I6 = s.I6[k];
+                      }
+                      m->evaluate(in, out, static_cast<size_t>(n), J0);
+                      for (int k = 0; k < n; ++k) storeResponse(s, k, out[k]);
+                  },
+                  io);
+}
+
+template <class Law, class Block>
+bool tryLaw(Impl::Group& g) {
+    auto* m = dynamic_cast<const materials::Material<Law>*>(g.material);
+    if (!m) return false;
+    g.law = &m->law();
+    g.fn = g.kind == 0 ? &kernelLaw<4, Law, Block> : &kernelLaw<8, Law, Block>;
+    return true;
+}
+
+template <class Block>
+void chooseKernel(Impl::Group& g) {
+    // the built-in laws run fully inlined; any other material through its batched evaluate()
+    if (tryLaw<materials::NeoHookeanLaw, Block>(g) || tryLaw<materials::TransverselyIsotropicLaw, Block>(g) ||
+        tryLaw<materials::OrthotropicLaw, Block>(g) || tryLaw<materials::CompressibleNeoHookeanLaw, Block>(g) ||
+        tryLaw<materials::CompressibleMooneyRivlinLaw, Block>(g) || tryLaw<materials::StVenantKirchhoffLaw, Block>(g) ||
+        tryLaw<materials::IncompressibleNeoHookeanLaw, Block>(g) ||
+        tryLaw<materials::IncompressibleMooneyRivlinLaw, Block>(g))
+        return;
+    g.law = nullptr;
+    using Fn = Impl::KernelFn;
+    static const Fn tet[8] = {&kernelGeneric<4, 0, Block>, &kernelGeneric<4, 1, Block>, &kernelGeneric<4, 2, Block>,
+                              &kernelGeneric<4, 3, Block>, &kernelGeneric<4, 4, Block>, &kernelGeneric<4, 5, Block>,
+                              &kernelGeneric<4, 6, Block>, &kernelGeneric<4, 7, Block>};
+    static const Fn hex[8] = {&kernelGeneric<8, 0, Block>, &kernelGeneric<8, 1, Block>, &kernelGeneric<8, 2, Block>,
+                              &kernelGeneric<8, 3, Block>, &kernelGeneric<8, 4, Block>, &kernelGeneric<8, 5, Block>,
+                              &kernelGeneric<8, 6, Block>, &kernelGeneric<8, 7, Block>};
+    g.fn = (g.kind == 0 ? tet : hex)[g.uses & 7u];
+}
+
+/// The mesh source in the context (MeshLoader, GridMesh ...: a core::BaseTopology).
+core::BaseTopology* findMeshSource(const core::Component& self) {
+    return self.node() ? self.node()->findInContext<core::BaseTopology>() : nullptr;
+}
+
+std::vector<std::string> tokens(const std::string& s) {
+    std::istringstream is(s);
+    std::vector<std::string> out;
+    std::string t;
+    while (is >> t) out.push_back(t);
+    return out;
+}
+
+} // namespace
+
+TLEDForceField::TLEDForceField() : m_impl(std::make_unique<Impl>()) {}
+TLEDForceField::~TLEDForceField() = default;
+
+// ------------------------------------------------------------------------------------------------
+// set-up
+
+namespace {
+
+struct GroupMaterialEntry {
+    std::string group;  ///< tag or name as written
+    BaseMaterial* material = nullptr;
+};
+
+std::vector<GroupMaterialEntry> parseGroupMaterials(const TLEDForceField& ff, const core::Param<std::string>& p) {
+    std::vector<GroupMaterialEntry> out;
+    const auto t = tokens(p.get());
+    if (t.empty()) return out;
+    if (t.size() % 2)
+        ff.fail(p, "groupMaterials = \"" + p.get() + "\" is not a list of pairs: give a group tag or name, then a "
+                                                     "material path, e.g. \"1 @liver 2 @vessel\"");
+    for (size_t i = 0; i < t.size(); i += 2) {
+        std::string path = t[i + 1];
+        if (!path.empty() && path[0] == '@') path = path.substr(1);
+        core::Component* c = ff.node() ? ff.node()->resolveComponent(path) : nullptr;
+        if (!c) ff.fail(p, "groupMaterials: no component '" + t[i + 1] + "' (for group " + t[i] + ")");
+        auto* m = dynamic_cast<BaseMaterial*>(c);
+        if (!m)
+            ff.fail(p, "groupMaterials: '" + t[i + 1] + "' (for group " + t[i] + ") is a " + c->className() +
+                           ", not a material");
+        out.push_back({t[i], m});
+    }
+    return out;
+}
+
+} // namespace
+
+std::vector<core::Component*> TLEDForceField::dependencies() const {
+    std::vector<core::Component*> deps;
+    if (!node()) return deps;
+    if (auto* s = node()->findInContext<core::BaseMechanicalState>()) deps.push_back(s);
+    if (!m_material.get() && !m_groupMaterials.isSet())
+        if (auto* m = node()->findInContext<BaseMaterial>()) deps.push_back(m);
+    for (auto& g : parseGroupMaterials(*this, m_groupMaterials)) deps.push_back(g.material);
+    for (auto* p : node()->findAllLocal<viscoelastic::ViscoelasticProny>()) deps.push_back(p);
+    if (!m_mesh.isSet() && !m_tetrahedra.isSet() && !m_hexahedra.isSet())
+        if (auto* src = findMeshSource(*this)) deps.push_back(src);
+    return deps;
+}
+
+void TLEDForceField::init() {
+    Impl& im = *m_impl;
+    im = Impl{};
+    m_blocks.clear();
+    im.J0 = m_J0.get();
+
+    // elements
+    const MeshData* mesh = nullptr;
+    if (m_mesh.isSet()) {
+        if (m_tetrahedra.isSet() || m_hexahedra.isSet())
+            fail(m_mesh, "both mesh and tetrahedra/hexahedra are given: give the elements one way");
+        mesh = &m_mesh.get();
+    } else if (!m_tetrahedra.isSet() && !m_hexahedra.isSet()) {
+        auto* src = findMeshSource(*this);
+        if (!src)
+            fail("no elements: set mesh=\"@loader.mesh\" (or tetrahedra/hexahedra), or put a mesh source "
+                 "(MeshLoader, GridMesh) in the node or a parent");
+        mesh = &src->meshData();
+    }
+    if (mesh) {
+        m_tets = mesh->tetrahedra;
+        m_hexes = mesh->hexahedra;
+    } else {
+        m_tets = m_tetrahedra.get();
+        m_hexes = m_hexahedra.get();
+    }
+    const size_t nT = m_tets.size(), nH = m_hexes.size();
+    if (nT + nH == 0) fail("the mesh has no tetrahedra and no hexahedra");
+    im.nTetCells = nT;
+    if (!mesh && (m_fibreArray.isSet() || m_fibreArray2.isSet()))
+        fail(m_fibreArray.isSet() ? m_fibreArray : m_fibreArray2,
+             "fibre arrays come from a mesh's cell arrays: give mesh=\"@loader.mesh\"");
+
+    // state and rest positions
+    auto* state = node() ? node()->findInContext<core::BaseMechanicalState>() : nullptr;
+    if (!state) fail("no mechanical state (MechanicalObject) in its node or a parent");
+    const Positions& X = state->x0();
+    int maxNode = -1;
+    for (auto& t : m_tets) for (int v : t) maxNode = std::max(maxNode, v);
+    for (auto& h : m_hexes) for (int v : h) maxNode = std::max(maxNode, v);
+    if (static_cast<size_t>(maxNode) >= X.size())
+        fail("elements use node " + std::to_string(maxNode) + " but the state '" + state->name() + "' has " +
+             std::to_string(X.size()) + " nodes");
+    im.nodeCount = static_cast<size_t>(maxNode + 1);
+
+    // materials: default, then per group
+    // with groupMaterials, only an explicit `material` covers the other groups (as in HEMLForceField)
+    BaseMaterial* defaultMat = m_material.get();
+    if (!defaultMat && !m_groupMaterials.isSet() && node()) defaultMat = node()->findInContext<BaseMaterial>();
+    std::map<int, BaseMaterial*> tagMaterial;
+    for (auto& g : parseGroupMaterials(*this, m_groupMaterials)) {
+        int tag = 0;
+        bool found = false;
+        try {
+            size_t used = 0;
+            tag = std::stoi(g.group, &used);
+            found = used == g.group.size();
+        } catch (...) {
+        }
+        if (!found && mesh)
+            for (auto& [t, name] : mesh->groupNames)
+                if (name == g.group) { tag = t; found = true; break; }
+        if (!found) {
+            std::vector<std::string> names;
+            if (mesh) for (auto& kv : mesh->groupNames) names.push_back(kv.second);
+            fail(m_groupMaterials, "groupMaterials: '" + g.group + "' is neither a group tag nor a group name of the mesh",
+                 names.empty() ? std::vector<std::string>{} : std::vector<std::string>{"group names: " + [&] {
+                     std::string s;
+                     for (auto& nm : names) s += (s.empty() ? "" : ", ") + nm;
+                     return s;
+                 }()});
+        }
+        if (tagMaterial.count(tag)) fail(m_groupMaterials, "groupMaterials: group " + g.group + " is given twice");
+        tagMaterial[tag] = g.material;
+    }
+    auto elementMaterial = [&](int kind, size_t e) -> BaseMaterial* {
+        int tag = 0;
+        if (mesh) {
+            const auto& tags = kind == 0 ? mesh->tetrahedronGroup : mesh->hexahedronGroup;
+            if (e < tags.size()) tag = tags[e];
+        }
+        auto it = tagMaterial.find(tag);
+        if (it != tagMaterial.end()) return it->second;
+        if (!defaultMat)
+            fail("no material for the " + std::string(kind == 0 ? "tetrahedra" : "hexahedra") + " of group " +
+                 std::to_string(tag) + ": put a material in the node, set material=\"@...\", or list the group in groupMaterials");
+        return defaultMat;
+    };
+
+    // fibre arrays (3 per cell, tetrahedra first, then hexahedra)
+    auto cellArray = [&](const core::Param<std::string>& p) -> const std::vector<double>* {
+        if (!p.isSet() || p.get().empty()) return nullptr;
+        auto it = mesh->cellArrays.find(p.get());
+        if (it == mesh->cellArrays.end()) {
+            std::string names;
+            for (auto& kv : mesh->cellArrays) names += (names.empty() ? "" : ", ") + kv.first;
+            fail(p, p.name() + " = \"" + p.get() + "\": the mesh has no such cell array",
+                 {names.empty() ? "the mesh has no cell arrays" : "cell arrays: " + names});
+        }
+        if (it->second.size() != 3 * (nT + nH))
+            fail(p, p.name() + " = \"" + p.get() + "\" has " + std::to_string(it->second.size()) + " values, expected 3 per cell (" +
+                        std::to_string(3 * (nT + nH)) + ")");
+        return &it->second;
+    };
+    const std::vector<double>* fibreA = cellArray(m_fibreArray);
+    const std::vector<double>* fibreB = cellArray(m_fibreArray2);
+
+    // groups (kind, material), in order of first appearance; elements sorted by group, stable
+    std::vector<std::vector<size_t>> perGroup;
+    auto groupOf = [&](int kind, BaseMaterial* m) {
+        for (size_t g = 0; g < im.groups.size(); ++g)
+            if (im.groups[g].kind == kind && im.groups[g].material == m) return g;
+        Impl::Group g;
+        g.kind = kind;
+        g.material = m;
+        g.uses = m->uses();
+        g.pModulus = m->bulkModulus() + 4.0 / 3.0 * m->shearModulus();
+        chooseKernel<Block>(g);
+        im.groups.push_back(g);
+        perGroup.emplace_back();
+        return im.groups.size() - 1;
+    };
+    for (int kind = 0; kind < 2; ++kind) {
+        const size_t n = kind == 0 ? nT : nH;
+        for (size_t e = 0; e < n; ++e) perGroup[groupOf(kind, elementMaterial(kind, e))].push_back(e);
+    }
+    bool anyI4 = false, anyI6 = false;
+    for (auto& g : im.groups) {
+        anyI4 |= (g.uses & BaseMaterial::UsesI4) != 0;
+        anyI6 |= (g.uses & BaseMaterial::UsesI6) != 0;
+    }
+    if (fibreA && !anyI4) warn("fibreArray is given but no material of this force field uses a fibre direction");
+    if (fibreB && !anyI6) warn("fibreArray2 is given but no material of this force field uses a second fibre direction");
+
+    auto direction = [&](int which, const Impl::Group& g, int kind, size_t e) -> Vec3 {
+        const std::vector<double>* arr = which == 0 ? fibreA : fibreB;
+        Vec3 d;
+        if (arr) {
+            const size_t cell = (kind == 0 ? 0 : nT) + e;
+            d = Vec3((*arr)[3 * cell], (*arr)[3 * cell + 1], (*arr)[3 * cell + 2]);
+        } else if (const Vec3* md = g.material->fibreDirection(which)) {
+            d = *md;
+        } else {
+            fail("material '" + g.material->name() + "' uses a " + std::string(which == 0 ? "fibre" : "second fibre") +
+                 " direction but gives none: set it on the material or give " + (which == 0 ? "fibreArray" : "fibreArray2"));
+        }
+        const double len = d.norm();
+        if (!(len > 1e-12) || !std::isfinite(len))
+            fail((which == 0 ? m_fibreArray : m_fibreArray2),
+                 std::string(which == 0 ? "fibre" : "second fibre") + " direction of " + (kind == 0 ? "tetrahedron " : "hexahedron ") +
+                     std::to_string(e) + " has length " + fmt(len) + ": directions must be non-zero");
+        return d / len;
+    };
+
+    // geometry
+    auto fillTet = [&](size_t gi, const std::vector<size_t>& elems) {
+        ElementSet<4>& s = im.tet;
+        const Impl::Group& g = im.groups[gi];
+        for (size_t e : elems) {
+            const auto& t = m_tets[e];
+            const Vec3 &p0 = X[t[0]], &p1 = X[t[1]], &p2 = X[t[2]], &p3 = X[t[3]];
+            Mat3 D;
+            D.col(0) = p1 - p0;
+            D.col(1) = p2 - p0;
+            D.col(2) = p3 - p0;
+            const double det = D.determinant();
+            double longest = 0;
+            const Vec3* pts[4] = {&p0, &p1, &p2, &p3};
+            for (int a = 0; a < 4; ++a)
+                for (int b2 = a + 1; b2 < 4; ++b2) longest = std::max(longest, (*pts[a] - *pts[b2]).norm());
+            if (!(std::abs(det) / 6 > 1e-12 * longest * longest * longest))
+                fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) +
+                     " " + std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate (volume " + fmt(det / 6) + " m^3)");
+            const Mat3 Di = D.inverse();
+            double dN[12];
+            for (int j = 0; j < 3; ++j) {
+                dN[3 + j] = Di(0, j);
+                dN[6 + j] = Di(1, j);
+                dN[9 + j] = Di(2, j);
+                dN[j] = -(Di(0, j) + Di(1, j) + Di(2, j));
+            }
+            for (int a = 0; a < 4; ++a) s.nodes.push_back(t[a]);
+            s.dN.insert(s.dN.end(), dN, dN + 12);
+            const double V = std::abs(det) / 6;
+            s.vol.push_back(V);
+            s.orig.push_back(static_cast<int>(e));
+            // smallest altitude 3 V / largest face area
+            const int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+            double amax = 0;
+            for (auto& f : faces) amax = std::max(amax, 0.5 * (*pts[f[1]] - *pts[f[0]]).cross(*pts[f[2]] - *pts[f[0]]).norm());
+            s.length.push_back(3 * V / amax);
+            if (anyI4) {
+                const Vec3 a = (g.uses & BaseMaterial::UsesI4) ? direction(0, g, 0, e) : Vec3(1, 0, 0);
+                s.a0.insert(s.a0.end(), {a[0], a[1], a[2]});
+            }
+            if (anyI6) {
+                const Vec3 b = (g.uses & BaseMaterial::UsesI6) ? direction(1, g, 0, e) : Vec3(0, 1, 0);
+                s.b0.insert(s.b0.end(), {b[0], b[1], b[2]});
+            }
+        }
+    };
+    auto fillHex = [&](size_t gi, const std::vector<size_t>& elems) {
+        ElementSet<8>& s = im.hex;
+        const Impl::Group& g = im.groups[gi];
+        const double gp = 1.0 / std::sqrt(3.0);
+        for (size_t e : elems) {
+            const auto& h = m_hexes[e];
+            Vec3 P[8];
+            for (int a = 0; a < 8; ++a) P[a] = X[h[a]];
+            // uniform-strain derivatives (1/V) int dN/dX dV = (1/V) int cof(J) dN/dxi dxi and V = int det J dxi,
+            // 2x2x2 Gauss points (exact for a trilinear map)
+            double V = 0;
+            double Bs[8][3] = {};
+            for (int q = 0; q < 8; ++q) {
+                const double g3[3] = {kHexXi[q][0] * gp, kHexXi[q][1] * gp, kHexXi[q][2] * gp};
+                double dxi[8][3];
+                for (int a = 0; a < 8; ++a) {
+                    const double f[3] = {1 + kHexXi[a][0] * g3[0], 1 + kHexXi[a][1] * g3[1], 1 + kHexXi[a][2] * g3[2]};
+                    dxi[a][0] = 0.125 * kHexXi[a][0] * f[1] * f[2];
+                    dxi[a][1] = 0.125 * kHexXi[a][1] * f[0] * f[2];
+                    dxi[a][2] = 0.125 * kHexXi[a][2] * f[0] * f[1];
+                }
+                double J[9] = {};
+                for (int a = 0; a < 8; ++a)
+                    for (int i = 0; i < 3; ++i)
+                        for (int j = 0; j < 3; ++j) J[3 * i + j] += P[a][i] * dxi[a][j];
+                double cj[9];
+                cof3(J, cj);
+                V += det3(J);
+                for (int a = 0; a < 8; ++a)
+                    for (int i = 0; i < 3; ++i)
+                        Bs[a][i] += cj[3 * i] * dxi[a][0] + cj[3 * i + 1] * dxi[a][1] + cj[3 * i + 2] * dxi[a][2];
+            }
+            double longest = 0;
+            for (int a = 0; a < 8; ++a)
+                for (int b2 = a + 1; b2 < 8; ++b2) longest = std::max(longest, (P[a] - P[b2]).norm());
+            if (!(std::abs(V) > 1e-12 * longest * longest * longest)) {
+                std::string nodes;
+                for (int v : h) nodes += " " + std::to_string(v);
+                fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + fmt(V) + " m^3)");
+            }
+            double dN[24];
+            double sumB2 = 0;
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) {
+                    dN[3 * a + i] = Bs[a][i] / V;
+                    sumB2 += dN[3 * a + i] * dN[3 * a + i];
+                }
+            // hourglass vectors gamma_k = h_k - (h_k . X) dN/dX (Flanagan-Belytschko)
+            double gam[32];
+            for (int q = 0; q < 4; ++q) {
+                double hx[3] = {0, 0, 0};
+                for (int a = 0; a < 8; ++a)
+                    for (int i = 0; i < 3; ++i) hx[i] += kHourglass[q][a] * P[a][i];
+                for (int a = 0; a < 8; ++a)
+                    gam[8 * q + a] = kHourglass[q][a] - (hx[0] * dN[3 * a] + hx[1] * dN[3 * a + 1] + hx[2] * dN[3 * a + 2]);
+            }
+            const double absV = std::abs(V);
+            for (int a = 0; a < 8; ++a) s.nodes.push_back(h[a]);
+            s.dN.insert(s.dN.end(), dN, dN + 24);
+            s.vol.push_back(absV);
+            s.orig.push_back(static_cast<int>(e));
+            s.gamma.insert(s.gamma.end(), gam, gam + 32);
+            s.hgK.push_back(m_hourglass.get() * g.pModulus * absV * sumB2 / 8.0);
+            double amax = 0;
+            for (auto& f : kHexFaces)
+                amax = std::max(amax, 0.5 * (P[f[2]] - P[f[0]]).cross(P[f[3]] - P[f[1]]).norm());
+            s.length.push_back(absV / amax);
+            if (anyI4) {
+                const Vec3 a = (g.uses & BaseMaterial::UsesI4) ? direction(0, g, 1, e) : Vec3(1, 0, 0);
+                s.a0.insert(s.a0.end(), {a[0], a[1], a[2]});
+            }
+            if (anyI6) {
+                const Vec3 b = (g.uses & BaseMaterial::UsesI6) ? direction(1, g, 1, e) : Vec3(0, 1, 0);
+                s.b0.insert(s.b0.end(), {b[0], b[1], b[2]});
+            }
+        }
+    };
+
+    // internal order: tetrahedra by group, then hexahedra by group; fixed blocks within each group
+    size_t bufSize = 0;
+    auto addBlocks = [&](int kind, size_t gi, size_t begin, size_t end) {
+        for (size_t b0 = begin; b0 < end; b0 += kBlockElements) {
+            Block b;
+            b.kind = kind;
+            b.group = static_cast<int>(gi);
+            b.begin = b0;
+            b.end = std::min(end, b0 + kBlockElements);
+            int lo = std::numeric_limits<int>::max(), hi = -1;
+            const std::vector<int>& nodes = kind == 0 ? im.tet.nodes : im.hex.nodes;
+            const size_t nn = kind == 0 ? 4 : 8;
+            for (size_t i = b.begin * nn; i < b.end * nn; ++i) {
+                lo = std::min(lo, nodes[i]);
+                hi = std::max(hi, nodes[i]);
+            }
+            b.nodeLo = lo;
+            b.nodeHi = hi;
+            b.bufOffset = bufSize;
+            bufSize += 4 * static_cast<size_t>(hi - lo + 1);
+            m_blocks.push_back(b);
+        }
+    };
+    for (int kind = 0; kind < 2; ++kind)
+        for (size_t gi = 0; gi < im.groups.size(); ++gi) {
+            if (im.groups[gi].kind != kind) continue;
+            const size_t begin = kind == 0 ? im.tet.size() : im.hex.size();
+            if (kind == 0) fillTet(gi, perGroup[gi]); else fillHex(gi, perGroup[gi]);
+            const size_t end = kind == 0 ? im.tet.size() : im.hex.size();
+            addBlocks(kind, gi, begin, end);
+        }
+    if (bufSize > 4 * 16 * im.nodeCount && m_blocks.size() > 16)
+        warn("the element blocks span " + std::to_string(bufSize / (4 * im.nodeCount)) +
+             " times the node count in their force buffers: the node numbering is poorly local; renumber the mesh "
+             "(e.g. reverse Cuthill-McKee) for speed and memory");
+    im.buf.assign(bufSize, 0.0);
+    im.tet.finish();
+    im.hex.finish();
+
+    // viscoelasticity
+    bool isoTaken = false, volTaken = false;
+    for (auto* p : node()->findAllLocal<viscoelastic::ViscoelasticProny>()) {
+        ViscoSet vs;
+        vs.prony = p;
+        vs.iso = p->relaxesIsochoric();
+        vs.vol = p->relaxesVolumetric();
+        if ((vs.iso && isoTaken) || (vs.vol && volTaken))
+            fail("two ViscoelasticProny components in its node relax the same part of the stress; give one series per "
+                 "part (apply=\"isochoric\" and apply=\"volumetric\") or one with apply=\"both\"");
+        isoTaken |= vs.iso;
+        volTaken |= vs.vol;
+        vs.terms = static_cast<int>(p->termCount());
+        const size_t n = (nT + nH) * static_cast<size_t>(vs.terms) * 6;
+        vs.Yprev.assign(n, 0.0);
+        vs.Ycur.assign(n, 0.0);
+        im.visco.push_back(std::move(vs));
+    }
+    const double dt = node()->context().dt;
+    if (dt > 0) dtChanged(dt);
+}
+
+void TLEDForceField::dtChanged(double dt) {
+    for (auto& vs : m_impl->visco) vs.prony->coefficients(dt, vs.A, vs.B);  // TLED eq. (30)
+}
+
+// ------------------------------------------------------------------------------------------------
+// evaluation
+
+namespace {
+
+template <class Block>
+void runBlock(const Impl& im, const Block& b, const KernelIO& io) {
+    im.groups[static_cast<size_t>(b.group)].fn(im, b, io);
+}
+
+/// u = x - X for the nodes the elements use, 4 per node (the 4th is padding).
+void displacements(const core::BaseMechanicalState& state, std::vector<double>& u, size_t nodes) {
+    u.resize(4 * nodes);
+    const Vec3* x = state.x().data();
+    const Vec3* X = state.x0().data();
+    const long n = static_cast<long>(nodes);
+    double* up = u.data();
+#pragma omp parallel for schedule(static) if (n > 65536)
+    for (long i = 0; i < n; ++i) {
+        up[4 * i] = x[i][0] - X[i][0];
+        up[4 * i + 1] = x[i][1] - X[i][1];
+        up[4 * i + 2] = x[i][2] - X[i][2];
+        up[4 * i + 3] = 0.0;
+    }
+}
+
+} // namespace
+
+void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
+    Impl& im = *m_impl;
+    if (state.size() < im.nodeCount || f.size() < im.nodeCount)
+        core::throwSimulationError(path() + ": its elements use " + std::to_string(im.nodeCount) + " nodes but the state '" +
+                                   state.name() + "' has " + std::to_string(state.size()));
+    // viscous history: a new time advances it (the last evaluation becomes the previous step)
+    if (!im.visco.empty()) {
+        for (auto& vs : im.visco)
+            if (vs.A.size() != static_cast<size_t>(vs.terms))
+                core::throwSimulationError(path() + ": viscoelastic stresses need a time step (dtChanged was not called)");
+        if (im.haveCur && t != im.curTime)
+            for (auto& vs : im.visco) std::swap(vs.Yprev, vs.Ycur);
+        im.haveCur = true;
+        im.curTime = t;
+    }
+    displacements(state, im.u, im.nodeCount);
+    const double* u = im.u.data();
+    const long nb = static_cast<long>(m_blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
+    for (long bi = 0; bi < nb; ++bi) {
+        const Block& b = m_blocks[static_cast<size_t>(bi)];
+        double* buf = im.buf.data() + b.bufOffset;
+        std::fill(buf, buf + 4 * static_cast<size_t>(b.nodeHi - b.nodeLo + 1), 0.0);
+        KernelIO io;
+        io.u = u;
+        io.buf = buf;
+        for (size_t v = 0; v < im.visco.size(); ++v) {
+            io.Yhist[v] = im.visco[v].Yprev.data();
+            io.Ynew[v] = im.visco[v].Ycur.data();
+        }
+        runBlock(im, b, io);
+    }
+    // sum the block buffers per node, in block order (bitwise the same for any thread count)
+    const long nNodes = static_cast<long>(im.nodeCount);
+    const long nTiles = (nNodes + kNodeTile - 1) / kNodeTile;
+#pragma omp parallel for schedule(static) if (nTiles > 1)
+    for (long tile = 0; tile < nTiles; ++tile) {
+        const int lo = static_cast<int>(tile * kNodeTile);
+        const int hi = static_cast<int>(std::min<long>(nNodes, (tile + 1) * kNodeTile)) - 1;
+        for (const Block& b : m_blocks) {
+            const int a = std::max(lo, b.nodeLo), z = std::min(hi, b.nodeHi);
+            const double* buf = im.buf.data() + b.bufOffset;
+            for (int n = a; n <= z; ++n) {
+                const double* src = buf + 4 * static_cast<size_t>(n - b.nodeLo);
+                Vec3& fn = f[static_cast<size_t>(n)];
+                fn[0] += src[0];
+                fn[1] += src[1];
+                fn[2] += src[2];
+            }
+        }
+    }
+}
+
+double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
+    const Impl& im = *m_impl;
+    if (state.size() < im.nodeCount) return std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> e(m_blocks.size(), 0.0);
+    std::vector<double> u;
+    displacements(state, u, im.nodeCount);
+    const long nb = static_cast<long>(m_blocks.size());
+    const bool hasVisco = !im.visco.empty();
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
+    for (long bi = 0; bi < nb; ++bi) {
+        KernelIO io;
+        io.u = u.data();
+        io.energy = &e[static_cast<size_t>(bi)];
+        if (hasVisco) {
+            // the energy is the elastic one, but the kernel's viscous path reads a history: give it the committed one
+            for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = im.visco[v].Yprev.data();
+        }
+        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
+    }
+    double sum = 0;
+    for (double v : e) sum += v;
+    return sum;
+}
+
+void TLEDForceField::stresses(const core::BaseMechanicalState& state, double t, std::vector<double>& S) const {
+    const Impl& im = *m_impl;
+    S.assign(6 * elementCount(), 0.0);
+    if (state.size() < im.nodeCount) return;
+    std::vector<double> u;
+    displacements(state, u, im.nodeCount);
+    const long nb = static_cast<long>(m_blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
+    for (long bi = 0; bi < nb; ++bi) {
+        KernelIO io;
+        io.u = u.data();
+        io.S = S.data();
+        for (size_t v = 0; v < im.visco.size(); ++v)
+            io.Yhist[v] = (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
+        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
+    }
+}
+
+void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
+    const Impl& im = *m_impl;
+    const size_t n = elementCount();
+    if (state.size() < im.nodeCount) return;
+    const double t = node() ? node()->context().time : im.curTime;
+    std::vector<double> S(6 * n, 0.0), F(9 * n, 0.0);
+    std::vector<double> u;
+    displacements(state, u, im.nodeCount);
+    const long nb = static_cast<long>(m_blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
+    for (long bi = 0; bi < nb; ++bi) {
+        KernelIO io;
+        io.u = u.data();
+        io.S = S.data();
+        io.F = F.data();
+        for (size_t v = 0; v < im.visco.size(); ++v)
+            io.Yhist[v] = (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
+        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
+    }
+    core::CellField fS{"S", 6, "Pa", S};
+    core::CellField fSig{"cauchyStress", 6, "Pa", std::vector<double>(6 * n)};
+    core::CellField fVM{"vonMises", 1, "Pa", std::vector<double>(n)};
+    core::CellField fJ{"J", 1, "", std::vector<double>(n)};
+    for (size_t e = 0; e < n; ++e) {
+        const double* Fe = &F[9 * e];
+        const double* Se = &S[6 * e];
+        Mat3 Fm;
+        Fm << Fe[0], Fe[1], Fe[2], Fe[3], Fe[4], Fe[5], Fe[6], Fe[7], Fe[8];
+        Mat3 Sm;
+        Sm << Se[0], Se[3], Se[5], Se[3], Se[1], Se[4], Se[5], Se[4], Se[2];
+        const double J = Fm.determinant();
+        const Mat3 sig = Fm * Sm * Fm.transpose() / J;  // Cauchy stress
+        double* o = &fSig.values[6 * e];
+        o[0] = sig(0, 0); o[1] = sig(1, 1); o[2] = sig(2, 2); o[3] = sig(0, 1); o[4] = sig(1, 2); o[5] = sig(0, 2);
+        const double d01 = o[0] - o[1], d12 = o[1] - o[2], d20 = o[2] - o[0];
+        fVM.values[e] = std::sqrt(0.5 * (d01 * d01 + d12 * d12 + d20 * d20) + 3 * (o[3] * o[3] + o[4] * o[4] + o[5] * o[5]));
+        fJ.values[e] = J;
+    }
+    out.push_back(std::move(fS));
+    out.push_back(std::move(fSig));
+    out.push_back(std::move(fVM));
+    out.push_back(std::move(fJ));
+}
+
+double TLEDForceField::restVolume(size_t e) const {
+    const Impl& im = *m_impl;
+    if (e < im.nTetCells) {
+        for (size_t i = 0; i < im.tet.size(); ++i)
+            if (static_cast<size_t>(im.tet.orig[i]) == e) return im.tet.vol[i];
+    } else {
+        for (size_t i = 0; i < im.hex.size(); ++i)
+            if (static_cast<size_t>(im.hex.orig[i]) == e - im.nTetCells) return im.hex.vol[i];
+    }
+    return 0;
+}
+
+double TLEDForceField::elementTimeStep(size_t e, double rho) const {
+    const Impl& im = *m_impl;
+    for (const Block& b : m_blocks) {
+        const auto& grp = im.groups[static_cast<size_t>(b.group)];
+        for (size_t i = b.begin; i < b.end; ++i) {
+            const size_t cell = b.kind == 0 ? static_cast<size_t>(im.tet.orig[i]) : im.nTetCells + static_cast<size_t>(im.hex.orig[i]);
+            if (cell == e) return (b.kind == 0 ? im.tet.length[i] : im.hex.length[i]) / grp.material->waveSpeed(rho);
+        }
+    }
+    return std::numeric_limits<double>::infinity();
+}
+
+double TLEDForceField::stableTimeStep(const core::BaseMechanicalState&) const {
+    const Impl& im = *m_impl;
+    const core::BaseMass* mass = node() ? node()->findInContext<core::BaseMass>() : nullptr;
+    const double rho = mass ? mass->density() : std::numeric_limits<double>::quiet_NaN();
+    if (!(rho > 0) || !std::isfinite(rho)) return std::numeric_limits<double>::infinity();
+    double dt = std::numeric_limits<double>::infinity();
+    for (size_t gi = 0; gi < im.groups.size(); ++gi) {
+        const auto& grp = im.groups[gi];
+        const double c = grp.material->waveSpeed(rho);  // TLED section 7: dt_cr = L_e / c
+        double Lmin = std::numeric_limits<double>::infinity();
+        for (const Block& b : m_blocks) {
+            if (static_cast<size_t>(b.group) != gi) continue;
+            const std::vector<double>& L = b.kind == 0 ? im.tet.length : im.hex.length;
+            for (size_t i = b.begin; i < b.end; ++i) Lmin = std::min(Lmin, L[i]);
+        }
+        dt = std::min(dt, Lmin / c);
+    }
+    return dt;
+}
+
+} // namespace fascia::tled
