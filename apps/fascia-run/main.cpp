@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -33,8 +34,9 @@ options:
   --dt DT          time step in seconds, overriding the scene's dt
   --threads N      OpenMP threads (default: all cores); results do not depend on it
   --output DIR     folder exporters and monitors write into (created; default: .)
-  --quiet          no progress bar, no warnings summary
-  --timers         print the time spent in each component at the end
+  --quiet          no progress bar
+  --timers         time each component and print the table at the end (inclusive: an
+                   integrator's time contains the force fields and constraints it calls)
   --list           print every registered component with its plugin and a description
   --describe NAME  print the parameters of a component (type, default, unit, range, help)
 
@@ -48,15 +50,27 @@ exit codes:
   0  success
   2  invalid scene or input (the located error, file:line, on stderr)
   3  the simulation failed while running (NaN or instability: step and component named)
-  1  anything else (bad command line, internal error)
+  1  anything else (bad command line, a file that cannot be written, internal error)
+  130  interrupted (Ctrl-C or SIGTERM): the run stops after the current step, files complete
 )";
 
+constexpr long kMaxSteps = 1000000000000L;
 volatile std::sig_atomic_t g_interrupted = 0;
 void onSignal(int) { g_interrupted = 1; }
 
 [[noreturn]] void usage(const std::string& msg) {
     std::cerr << "fascia-run: " << msg << "\n(see fascia-run --help)\n";
     std::exit(1);
+}
+
+long parseCount(const std::string& opt, const char* v, long lo, long hi) {
+    if (!v || !*v) usage(opt + " needs a value");
+    char* end = nullptr;
+    errno = 0;
+    const long n = std::strtol(v, &end, 10);
+    if (*end || errno == ERANGE || n < lo || n > hi)
+        usage(opt + " needs an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], not '" + v + "'");
+    return n;
 }
 
 double parseNumber(const std::string& opt, const char* v) {
@@ -137,17 +151,13 @@ int main(int argc, char** argv) {
             std::cout << kHelp;
             return 0;
         } else if (a == "--steps") {
-            const char* v = next();
-            if (!v) usage("--steps needs a value");
-            char* end = nullptr;
-            steps = std::strtol(v, &end, 10);
-            if (*end || steps < 0) usage(std::string("--steps needs a non-negative integer, not '") + v + "'");
+            steps = parseCount(a, next(), 0, kMaxSteps);
         } else if (a == "--time") {
             endTime = parseNumber(a, next());
         } else if (a == "--dt") {
             dt = parseNumber(a, next());
         } else if (a == "--threads") {
-            threads = int(parseNumber(a, next()));
+            threads = int(parseCount(a, next(), 1, 1024));
         } else if (a == "--output") {
             const char* v = next();
             if (!v) usage("--output needs a folder");
@@ -186,7 +196,11 @@ int main(int argc, char** argv) {
             throwInputError({scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
         if (steps < 0) {
             double T = endTime > 0 ? endTime : sim->root().endTime.get();
-            steps = T > 0 ? long(std::ceil(T / sim->dt() - 1e-9)) : 100;
+            const double n = T > 0 ? std::ceil(T / sim->dt() - 1e-9) : 100.0;
+            if (!(n <= double(kMaxSteps)))
+                throwInputError({scene, sim->root().loc().line}, "time " + std::to_string(T) + " s at dt = " +
+                                                                     std::to_string(sim->dt()) + " s is more than 1e12 steps");
+            steps = long(n);
         }
         std::signal(SIGINT, onSignal);
         std::signal(SIGTERM, onSignal);

@@ -12,6 +12,7 @@ void BaseMechanicalState::resize(size_t n) {
     m_v.assign(n, Vec3::Zero());
     m_f.assign(n, Vec3::Zero());
     m_reaction.assign(n, Vec3::Zero());
+    m_external.assign(n, Vec3::Zero());
 }
 
 void MechanicalGroup::computeForces(double t) {
@@ -21,14 +22,21 @@ void MechanicalGroup::computeForces(double t) {
         ScopedTimer timer(ff->timer());
         ff->addForce(*state, f, t);
     }
-    if (!gravity.isZero()) {
-        const size_t n = f.size();
+    const size_t n = f.size();
+    if (!gravity.isZero())
         for (size_t i = 0; i < n; ++i) f[i] += mass[i] * gravity;
-    }
+    const Positions& ext = state->externalForce();
+    if (ext.size() == n)
+        for (size_t i = 0; i < n; ++i) f[i] += ext[i];
+    if (constraints.empty()) return;
+    beforeConstraints = f;
     for (auto* c : constraints) {
         ScopedTimer timer(c->timer());
         c->projectForces(*state);
     }
+    // one reaction per node, whatever the number of constraints acting on it
+    Positions& r = state->reaction();
+    for (size_t i = 0; i < n; ++i) r[i] = f[i] - beforeConstraints[i];
 }
 
 void MechanicalGroup::projectState(double t) {

@@ -101,6 +101,14 @@ Component* Node::resolveComponent(const std::string& path) const {
     return n ? n->component(path.substr(slash + 1)) : nullptr;
 }
 
+void SceneContext::claimOutput(const std::string& path, const Base& who) {
+    const std::string me = who.path() + (who.loc().empty() ? "" : " (" + who.loc().str() + ")");
+    auto [it, fresh] = outputs.emplace(path, me);
+    if (!fresh && it->second != me)
+        who.fail("writes '" + path + "', which " + it->second + " writes too",
+                 {"give one of them another filename (or name)"});
+}
+
 SceneContext& Node::context() {
     Node* r = root();
     if (!r->m_context) r->m_context = std::make_unique<SceneContext>();

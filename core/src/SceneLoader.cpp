@@ -157,6 +157,11 @@ void buildChildren(Node& node, const ElementSpec& spec) {
         if (child.tag == "Node") {
             Node& n = node.addChild(buildNode(child));
             if (n.name().empty()) throwInputError(child.loc, "a <Node> needs a name");
+            for (BaseParam* p : {static_cast<BaseParam*>(&n.dt), static_cast<BaseParam*>(&n.dtSafety),
+                                 static_cast<BaseParam*>(&n.endTime)})
+                if (p->isSet())
+                    throwInputError(child.loc, "Node '" + n.name() + "': " + p->name() +
+                                                   " belongs on the root node (it sets the time of the whole scene)");
             if (!names.insert("node:" + n.name()).second)
                 throwInputError(child.loc, "two child nodes of '" + node.name() + "' are named '" + n.name() + "'");
         } else {

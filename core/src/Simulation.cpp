@@ -126,7 +126,7 @@ void Simulation::init() {
                         std::to_string(n) + " nodes");
             for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
         }
-        if (g.masses.empty() && n > 0 && !g.forceFields.empty())
+        if (g.masses.empty() && n > 0 && (!g.forceFields.empty() || !g.gravity.isZero()))
             g.state->fail("no mass in its context: add a LumpedMass next to it");
         g.invMass.resize(n);
         size_t massless = 0;
@@ -175,6 +175,8 @@ void Simulation::setDt(double dt) {
     if (!(dt > 0) || !std::isfinite(dt))
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
     m_dt = dt;
+    m_timeAtDtChange = m_time;
+    m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
     {
         double crit = std::numeric_limits<double>::infinity();
@@ -214,7 +216,7 @@ void Simulation::step() {
         g.checkFinite(m_time + m_dt);
     }
     ++m_step;
-    m_time = m_step * m_dt;  // no drift from summing dt
+    m_time = m_timeAtDtChange + double(m_step - m_stepAtDtChange) * m_dt;  // no drift from summing dt
     ctx.time = m_time;
     ctx.step = m_step;
     for (auto* o : m_observers) {
@@ -241,7 +243,15 @@ BaseMechanicalState& Simulation::state(const std::string& nameOrPath) {
 
 Component* Simulation::find(const std::string& nameOrPath) const {
     if (nameOrPath.find('/') != std::string::npos) return m_root->resolveComponent(nameOrPath);
-    return m_root->findByName(nameOrPath);
+    Component* found = nullptr;
+    int count = 0;
+    m_root->visit([&](const Node& n) {
+        if (Component* c = n.component(nameOrPath)) found = found ? found : c, ++count;
+    });
+    if (count > 1)
+        throwInputError({}, "the name '" + nameOrPath + "' is ambiguous: " + std::to_string(count) +
+                                " components have it; give a path such as '" + found->path() + "'");
+    return found;
 }
 
 std::vector<TimerRow> Simulation::timers() const {

@@ -13,6 +13,9 @@ void CorotationalTetForceField::init() {
     auto* topo = node()->findInContext<fascia::core::BaseTopology>();
     auto* state = node()->findInContext<fascia::core::BaseMechanicalState>();
     if (!topo || !state) fail("needs a mesh source (MeshLoader, GridMesh) and a MechanicalObject in its context");
+    if (topo->meshData().points.size() != state->size())
+        fail("the mesh source has " + std::to_string(topo->meshData().points.size()) + " points, the state " +
+             std::to_string(state->size()) + " nodes");
     m_tets = topo->meshData().tetrahedra;
     if (m_tets.empty()) fail("the mesh has no tetrahedra");
     const double E = m_E.get(), nu = m_nu.get();

@@ -2,11 +2,6 @@
 
 namespace fascia::mechanics {
 
-void CentralDifference::dtChanged(double) {
-    // the history holds x(n-1) for the old step; restart from the current positions and velocities
-    m_history.clear();
-}
-
 void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     g.computeForces(t);
     Positions& x = g.state->x();
@@ -16,7 +11,8 @@ void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     const size_t n = x.size();
     History& h = m_history[g.state];
     if (h.prev.size() != n || h.dt != dt) {
-        // consistent start (x(-1) from x(0), v(0), a(0))
+        // consistent start (x(-1) from x(0), v(0), a(0)); also after a change of dt, since the
+        // history holds x(n-1) for the old step
         h.prev.resize(n);
         for (size_t i = 0; i < n; ++i)
             h.prev[i] = x[i] - dt * v[i] + 0.5 * dt * dt * (g.invMass[i] * f[i] - alpha * v[i]);
@@ -27,11 +23,11 @@ void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     const bool haveTwo = h.steps > 0;
     for (size_t i = 0; i < n; ++i) {
         const Vec3 xn = x[i];
-        const Vec3 next = c1 * (2.0 * xn - c2 * h.prev[i] + dt2 * g.invMass[i] * f[i]);  // TLED eq. (6)
+        const Vec3 next = c1 * (2.0 * xn - c2 * h.prev[i] + dt2 * g.invMass[i] * f[i]);
         // velocity at n+1: second-order backward difference once two steps exist, else the
         // exact value for constant acceleration over the first step
         v[i] = haveTwo ? Vec3((3.0 * next - 4.0 * xn + h.prev[i]) / (2.0 * dt))
-                       : Vec3((next - xn) / dt + 0.5 * dt * g.invMass[i] * f[i]);
+                       : Vec3(c1 * ((next - xn) / dt + 0.5 * dt * g.invMass[i] * f[i]));
         h.prev[i] = xn;
         x[i] = next;
     }

@@ -5,14 +5,14 @@
 
 namespace fascia::mechanics {
 
-/// Central difference, TLED section 2 (eq. (4)-(6)) with mass-proportional damping:
+/// Central difference (TLED section 2, step 3 of its algorithm; the standard damped form), with
+/// mass-proportional damping:
 /// x(n+1) = [2 x(n) - (1 - alpha dt/2) x(n-1) + dt^2 f(n)/m] / (1 + alpha dt/2).
 /// Consistent start: x(-1) = x(0) - dt v(0) + dt^2/2 (f(0)/m - alpha v(0)), so that a constant
 /// acceleration gives u = a t^2/2 exactly. Velocities are the second-order backward difference.
 class CentralDifference : public DampedIntegrator {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
-    void dtChanged(double dt) override;
 
 private:
     struct History {

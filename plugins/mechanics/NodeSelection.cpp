@@ -55,6 +55,16 @@ std::array<bool, 3> readAxisMask(const core::Component& owner, const core::Param
     return {m[0] == 1, m[1] == 1, m[2] == 1};
 }
 
+const MeshData& contextMesh(const core::Component& c, const core::BaseMechanicalState& state) {
+    auto* topo = c.node()->findInContext<core::BaseTopology>();
+    if (!topo) c.fail("needs a mesh source (MeshLoader, GridMesh) in its context");
+    const MeshData& mesh = topo->meshData();
+    if (mesh.points.size() != state.size())
+        c.fail("the mesh source '" + topo->name() + "' has " + std::to_string(mesh.points.size()) +
+               " points but the state '" + state.name() + "' has " + std::to_string(state.size()) + " nodes");
+    return mesh;
+}
+
 core::BaseMechanicalState& contextState(const core::Component& c) {
     auto* s = c.node()->findInContext<core::BaseMechanicalState>();
     if (!s) c.fail("no MechanicalObject in its context: put one in the same node or a parent");

@@ -24,5 +24,8 @@ std::array<bool, 3> readAxisMask(const core::Component& owner, const core::Param
 
 /// The state in the component's context, or a located error.
 core::BaseMechanicalState& contextState(const core::Component& c);
+/// The mesh of the mesh source in the component's context, checked to have one point per node of
+/// the state (located errors otherwise).
+const MeshData& contextMesh(const core::Component& c, const core::BaseMechanicalState& state);
 
 } // namespace fascia::mechanics

@@ -60,13 +60,9 @@ void PrescribedDisplacement::projectVelocities(core::BaseMechanicalState& s, dou
 
 void PrescribedDisplacement::projectForces(core::BaseMechanicalState& s) {
     auto& f = s.f();
-    auto& r = s.reaction();
     for (int i : m_nodes)
         for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) {
-                r[i][a] = -f[i][a];
-                f[i][a] = 0;
-            }
+            if (m_mask[a]) f[i][a] = 0;
 }
 
 } // namespace fascia::mechanics

@@ -18,10 +18,8 @@ Key sorted(int a, int b, int c) {
 } // namespace
 
 void SurfacePressure::init() {
-    auto* topo = node()->findInContext<core::BaseTopology>();
-    if (!topo) fail("needs a mesh source (MeshLoader, GridMesh) in its context");
     auto& state = contextState(*this);
-    const MeshData& mesh = topo->meshData();
+    const MeshData& mesh = contextMesh(*this, state);
     // each face of a tetrahedron -> the opposite node, and how many tetrahedra use it
     std::map<Key, std::pair<int, int>> faces;
     for (auto& t : mesh.tetrahedra)
@@ -43,7 +41,7 @@ void SurfacePressure::init() {
     }
     if (m_nodeGroup.isSet()) {
         auto it = mesh.nodeGroups.find(m_nodeGroup.get());
-        if (it == mesh.nodeGroups.end()) fail(m_nodeGroup, "no node group '" + m_nodeGroup.get() + "' in '" + topo->name() + "'");
+        if (it == mesh.nodeGroups.end()) fail(m_nodeGroup, "no node group '" + m_nodeGroup.get() + "' in the mesh");
         const std::set<int> in(it->second.begin(), it->second.end());
         Triangles kept;
         for (auto& t : candidates)
@@ -52,14 +50,21 @@ void SurfacePressure::init() {
     }
     const Positions& X = state.x0();
     m_tris.clear();
+    size_t skipped = 0;
     for (auto t : candidates) {
         auto it = faces.find(sorted(t[0], t[1], t[2]));
-        if (it == faces.end()) continue;  // a triangle of no tetrahedron: no inside to orient by
+        if (it == faces.end()) {  // a triangle of no tetrahedron: no inside to orient by
+            ++skipped;
+            continue;
+        }
         const Vec3 n = (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]);
         if (n.dot(X[t[0]] - X[it->second.first]) < 0) std::swap(t[1], t[2]);  // outwards
         m_tris.push_back(t);
     }
-    if (m_tris.empty()) fail("selects no boundary triangle");
+    if (m_tris.empty())
+        fail(mesh.tetrahedra.empty() ? "needs a tetrahedral mesh (faces of hexahedra are not supported)"
+                                     : "selects no boundary triangle");
+    if (skipped) warn(std::to_string(skipped) + " triangle(s) are the face of no tetrahedron and were left out");
 }
 
 void SurfacePressure::addForce(core::BaseMechanicalState& s, Positions& f, double t) {

@@ -98,6 +98,10 @@ void checkReadable(const std::string& path) {
     }
 }
 
+/// A reservation for a count read from a file: a hint, capped so that a corrupt header announcing
+/// billions of records cannot exhaust memory before the records themselves are found missing.
+size_t reserveHint(long long n) { return size_t(std::clamp<long long>(n, 0, 1 << 22)); }
+
 std::string readWholeFile(const std::string& path) {
     checkReadable(path);
     std::ifstream in(path, std::ios::binary);
@@ -719,9 +723,9 @@ private:
         m_sc.expectEndOfLine("the number of nodes");
         m_sc.setRecordFormat("'node-id x y z'");
         auto& pts = m_b.mesh.points;
-        pts.reserve(size_t(n));
-        m_ids.reserve(size_t(n));
-        m_lines.reserve(size_t(n));
+        pts.reserve(reserveHint(n));
+        m_ids.reserve(reserveHint(n));
+        m_lines.reserve(reserveHint(n));
         for (long long i = 0; i < n; ++i) {
             sectionRecord(section, "nodes", i, n, countLine);
             const long long id = m_sc.integer("node id");
@@ -912,9 +916,9 @@ private:
         m_sc.expectEndOfLine("the node counts");
         if (blocks < 0 || n < 0) fail(m_file, countLine, "negative count in the $Nodes header");
         auto& pts = m_b.mesh.points;
-        pts.reserve(size_t(n));
-        m_ids.reserve(size_t(n));
-        m_lines.reserve(size_t(n));
+        pts.reserve(reserveHint(n));
+        m_ids.reserve(reserveHint(n));
+        m_lines.reserve(reserveHint(n));
         long long done = 0;
         std::vector<long long> blockIds;
         for (long long b = 0; b < blocks; ++b) {
@@ -1004,10 +1008,10 @@ private:
 
     void reserveElements(long long n) {
         auto& m = m_b.mesh;
-        m.tetrahedra.reserve(size_t(n));
-        m.tetrahedronGroup.reserve(size_t(n));
-        m_b.origin.tetLine.reserve(size_t(n));
-        m_b.origin.tetNumber.reserve(size_t(n));
+        m.tetrahedra.reserve(reserveHint(n));
+        m.tetrahedronGroup.reserve(reserveHint(n));
+        m_b.origin.tetLine.reserve(reserveHint(n));
+        m_b.origin.tetNumber.reserve(reserveHint(n));
     }
 
     Scanner m_sc;
@@ -1067,9 +1071,9 @@ void readTetGen(const std::string& given, Builder& b) {
     sn.setRecordFormat("'point-id x y z [attributes] [boundary-marker]'");
     std::vector<long long> ids;
     std::vector<int> lines;
-    ids.reserve(size_t(n));
-    lines.reserve(size_t(n));
-    b.mesh.points.reserve(size_t(n));
+    ids.reserve(reserveHint(n));
+    lines.reserve(reserveHint(n));
+    b.mesh.points.reserve(reserveHint(n));
     for (long long i = 0; i < n; ++i) {
         if (!sn.nextRecord())
             fail(nodeFile, sn.lastLine(),
@@ -1113,7 +1117,7 @@ void readTetGen(const std::string& given, Builder& b) {
     if (per != 4) fail(eleFile, eleCountLine, "a TetGen tetrahedron has 4 nodes, the header says " + std::to_string(per));
     se.setRecordFormat("'tetrahedron-id n1 n2 n3 n4 [attributes]'");
     auto& mesh = b.mesh;
-    mesh.tetrahedra.reserve(size_t(m));
+    mesh.tetrahedra.reserve(reserveHint(m));
     for (long long i = 0; i < m; ++i) {
         if (!se.nextRecord())
             fail(eleFile, se.lastLine(),
@@ -1475,14 +1479,19 @@ MeshData readMesh(const std::string& path, const ReadOptions& opt, ReadReport* r
     b.report = &rep;
     b.origin.nodeFile = b.origin.elementFile = path;
     const std::string ext = lowerExtension(path);
-    if (ext == ".msh") {
-        const std::string text = readWholeFile(path);
-        GmshReader(text, path, b).read();
-    } else if (ext == ".vtk" || ext == ".vtu") {
-        readVtk(path, ext == ".vtu", b);
-    } else if (ext == ".node" || ext == ".ele") {
-        readTetGen(path, b);
-    } else {
+    try {
+        if (ext == ".msh") {
+            const std::string text = readWholeFile(path);
+            GmshReader(text, path, b).read();
+        } else if (ext == ".vtk" || ext == ".vtu") {
+            readVtk(path, ext == ".vtu", b);
+        } else if (ext == ".node" || ext == ".ele") {
+            readTetGen(path, b);
+        }
+    } catch (const std::bad_alloc&) {
+        fail(path, 0, "mesh file '" + path + "' announces more records than fit in memory: its header is corrupt");
+    }
+    if (ext != ".msh" && ext != ".vtk" && ext != ".vtu" && ext != ".node" && ext != ".ele") {
         fail(path, 0,
              (ext.empty() ? std::string("mesh file '") + path + "' has no extension"
                           : "unknown mesh file extension '" + ext + "' of '" + path + "'") +

@@ -2,6 +2,7 @@
 #include "fascia/scene/Node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -17,11 +18,25 @@ const char* tensorSuffix6[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
 void Monitor::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
-    for (int i : m_indices.get())
+    if (m_group.isSet()) {
+        auto* topo = node()->findInContext<core::BaseTopology>();
+        if (!topo) fail(m_group, "group = \"" + m_group.get() + "\" but no mesh source is in the context");
+        auto it = topo->meshData().nodeGroups.find(m_group.get());
+        if (it == topo->meshData().nodeGroups.end()) fail(m_group, "no node group '" + m_group.get() + "' in '" + topo->name() + "'");
+        m_nodes = it->second;
+        m_nodes.insert(m_nodes.end(), m_indices.get().begin(), m_indices.get().end());
+    } else {
+        m_nodes = m_indices.get();
+    }
+    for (int i : m_nodes)
         if (size_t(i) >= m_st->size())
             fail(m_indices, "node index " + std::to_string(i) + " is out of range: the state '" + m_st->name() + "' has " +
                                 std::to_string(m_st->size()) + " nodes");
+    if (auto* c = m_reactionOf.get(); c && c->node()->findInContext<core::BaseMechanicalState>() != m_st)
+        fail(m_reactionOf, "the constraint '" + c->name() + "' acts on another state than '" + m_st->name() + "'");
     m_ff = m_forceField.get();
+    if (m_ff && m_ff->node()->findInContext<core::BaseMechanicalState>() != m_st)
+        fail(m_forceField, "the force field '" + m_ff->name() + "' acts on another state than '" + m_st->name() + "'");
     if (!m_ff && m_elements.isSet())
         for (const core::Node* n = node(); n && !m_ff; n = n->parent())
             for (auto* ff : n->findAllLocal<core::BaseForceField>())
@@ -57,7 +72,7 @@ void Monitor::init() {
     // header row with units
     std::ostringstream h;
     h << "time [s]";
-    for (int i : m_indices.get()) {
+    for (int i : m_nodes) {
         auto vec = [&](const char* q, const char* unit) {
             for (int a = 0; a < 3; ++a) h << "," << q << i << "_" << axis[a] << " [" << unit << "]";
         };
@@ -85,6 +100,7 @@ void Monitor::init() {
 
     const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
     m_path = (fs::path(node()->context().outputDir) / file).string();
+    node()->context().claimOutput(m_path, *this);
     std::error_code ec;
     fs::create_directories(fs::path(m_path).parent_path(), ec);
     m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
@@ -98,7 +114,7 @@ void Monitor::observe(double t, long step) {
     std::ostringstream row;
     row.precision(12);
     row << t;
-    for (int i : m_indices.get()) {
+    for (int i : m_nodes) {
         auto vec = [&](const Vec3& v) { row << "," << v[0] << "," << v[1] << "," << v[2]; };
         if (m_positions.get()) vec(m_st->x()[i]);
         if (m_displacements.get()) vec(m_st->x()[i] - m_st->x0()[i]);
@@ -116,7 +132,10 @@ void Monitor::observe(double t, long step) {
             for (auto& [name, comps] : m_cellFields)
                 for (auto& f : fields)
                     if (f.name == name)
-                        for (int c = 0; c < comps; ++c) row << "," << f.values[size_t(e) * comps + c];
+                        for (int c = 0; c < comps; ++c) {
+                            const size_t k = size_t(e) * comps + c;
+                            row << "," << (k < f.values.size() ? f.values[k] : std::nan(""));
+                        }
     }
     row << "\n";
     *m_out << row.str();  // whole rows only

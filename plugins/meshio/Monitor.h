@@ -17,6 +17,7 @@ public:
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("CSV file, relative to the output folder (default: <name>.csv)")};
     core::Param<IndexList> m_indices{this, core::ParamSpec("indices").help("nodes to record (inline or linked, e.g. \"@box.indices\")")};
+    core::Param<std::string> m_group{this, core::ParamSpec("group").help("a node group of the mesh source in the context to record (with indices, if given)")};
     core::Param<bool> m_positions{this, core::ParamSpec("positions").help("record positions"), false};
     core::Param<bool> m_displacements{this, core::ParamSpec("displacements").help("record displacements"), true};
     core::Param<bool> m_velocities{this, core::ParamSpec("velocities").help("record velocities"), false};
@@ -29,6 +30,7 @@ public:
 
 private:
     core::BaseMechanicalState* m_st = nullptr;
+    IndexList m_nodes;
     core::BaseForceField* m_ff = nullptr;
     std::vector<std::pair<std::string, int>> m_cellFields;  ///< (name, components)
     std::unique_ptr<std::ofstream> m_out;

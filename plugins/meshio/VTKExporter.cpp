@@ -28,19 +28,28 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out << text;
         out.flush();
-        if (!out) core::throwInputError({}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
+        if (!out) throw core::Error(core::ErrorKind::Internal, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
     }
     std::error_code ec;
     fs::rename(tmp, p, ec);
-    if (ec) core::throwInputError({}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
+    if (ec) throw core::Error(core::ErrorKind::Internal, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
 }
 
 void VTKExporter::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
     m_base = m_filename.isSet() ? m_filename.get() : name();
-    if (m_base.empty() || m_base.find('/') != std::string::npos && m_base.back() == '/')
-        fail(m_filename, "filename must name files, e.g. \"liver\"");
+    if (m_base.empty() || m_base.back() == '/') fail(m_filename, "filename must name files, e.g. \"liver\"");
+    const fs::path pvd = fs::path(node()->context().outputDir) / (m_base + ".pvd");
+    node()->context().claimOutput(pvd.string(), *this);
+    // temporary files a killed run left behind
+    std::error_code ec;
+    const std::string stem = "." + fs::path(m_base).filename().string() + "_";
+    for (auto& e : fs::directory_iterator(pvd.parent_path().empty() ? fs::path(".") : pvd.parent_path(), ec)) {
+        const std::string n = e.path().filename().string();
+        if ((n.rfind(stem, 0) == 0 || n == "." + pvd.filename().string() + ".tmp") && e.path().extension() == ".tmp")
+            fs::remove(e.path(), ec);
+    }
     // the element force fields acting on the state (for cells and cell data)
     m_forceFields.clear();
     node()->root()->visit([&](const core::Node& n) {
@@ -48,6 +57,9 @@ void VTKExporter::init() {
             if (ff->node()->findInContext<core::BaseMechanicalState>() == m_st && (ff->tetrahedra() || ff->hexahedra()))
                 m_forceFields.push_back(ff);
     });
+    if (m_forceFields.size() > 1)
+        warn("writes the cells of '" + m_forceFields.front()->name() + "' only; " + std::to_string(m_forceFields.size() - 1) +
+             " other element force field(s) on the same state are not exported");
     m_written.clear();
 }
 
@@ -146,11 +158,11 @@ void VTKExporter::writeStep(double t, long step) {
     writer->EncodeAppendedDataOff();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
-        core::throwInputError(loc(), className() + " '" + name() + "': cannot write '" + target.string() +
+        throw core::Error(core::ErrorKind::Internal, loc(), className() + " '" + name() + "': cannot write '" + target.string() +
                                          "' (disk full, or no permission on the output folder?)");
     }
     fs::rename(tmp, target, ec);
-    if (ec) core::throwInputError(loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
+    if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
     m_written.emplace_back(t, (fs::path(m_base).parent_path() / fileName).string());
     writeCollection();
 }

@@ -225,3 +225,53 @@ TEST_CASE("surface pressure gives -p A n on a face and nothing net on a closed s
     CHECK_THAT(errorOf(scene("<SurfacePressure pressure=\"1\" nodeGroup=\"top\"/>")),
                Contains("scene.xml:6:") && Contains("no node group 'top'"));
 }
+
+TEST_CASE("overlapping constraints report the whole support reaction once", "[FixedConstraint]") {
+    // a 1 kg-per-node cloud fixed by two constraints sharing node 0: the reactions sum to the weight
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler", "    <FixedConstraint name=\"a\" indices=\"0 1\"/>\n"
+                                                                 "    <FixedConstraint name=\"b\" indices=\"0 2\"/>\n"));
+    sim->run(3);
+    fascia::Vec3 sum = fascia::Vec3::Zero();
+    for (auto& r : sim->state("mo").reaction()) sum += r;
+    CHECK(sum[2] == Approx(3 * 9.81));
+    CHECK(sim->state("mo").reaction()[0][2] == Approx(9.81));
+}
+
+TEST_CASE("an embedding program drives a node with external forces between steps", "[MechanicalObject]") {
+    auto sim = Simulation::fromString(cloud("SemiImplicitEuler", "", "0 0 0"));
+    auto& mo = sim->state("mo");
+    mo.externalForce()[1] = fascia::Vec3(2, 0, 0);  // 2 N on a 1 kg node
+    sim->run(100);
+    const double t = sim->time();
+    CHECK(mo.x()[1][0] == Approx(1 + 0.5 * 2 * t * t).epsilon(1e-12));
+    CHECK(mo.x()[0][0] == 0.0);
+    mo.externalForce()[1].setZero();
+    const double v = mo.v()[1][0];
+    sim->run(10);
+    CHECK(mo.v()[1][0] == v);  // no force, no acceleration
+}
+
+TEST_CASE("central difference's first velocity includes the damping", "[CentralDifference]") {
+    auto sim = Simulation::fromString(
+        "<Node name=\"root\" dt=\"0.01\">\n"
+        "  <CentralDifference damping=\"2\"/>\n"
+        "  <MechanicalObject name=\"mo\" position=\"0 0 0\" initialVelocity=\"1 0 0\"/>\n"
+        "  <LumpedMass totalMass=\"1\"/>\n"
+        "</Node>\n");
+    sim->step();
+    CHECK(sim->state("mo").v()[0][0] == Approx(std::exp(-2 * 0.01)).epsilon(1e-4));
+}
+
+TEST_CASE("gravity without a mass is an error, not a body that silently stays put", "[LumpedMass]") {
+    CHECK_THAT(errorOf("<Node name=\"root\" dt=\"0.1\" gravity=\"0 0 -9.81\">\n  <SemiImplicitEuler/>\n"
+                       "  <MechanicalObject name=\"mo\" position=\"0 0 0\"/>\n</Node>\n"),
+               Contains("scene.xml:3:") && Contains("no mass in its context"));
+}
+
+TEST_CASE("changing dt mid-run keeps the clock continuous", "[Simulation]") {
+    auto sim = Simulation::fromString(cloud("CentralDifference", "", "0 0 0"));
+    sim->run(10);  // 0.1 s
+    sim->setDt(0.001);
+    sim->run(10);
+    CHECK(sim->time() == Approx(0.11).epsilon(1e-12));
+}

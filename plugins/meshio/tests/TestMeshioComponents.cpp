@@ -245,3 +245,33 @@ TEST_CASE("Monitor and exporter parameters are checked", "[Monitor][VTKExporter]
     CHECK_THAT(errorOf(cube("hexahedra", "  <VTKExporter every=\"0\"/>\n")),
                Contains("scene.xml:6:") && Contains("every = 0 is outside >= 1"));
 }
+
+TEST_CASE("two exporters writing the same files are a located error", "[VTKExporter][Monitor]") {
+    auto dir = freshDir("clash");
+    auto err = [&](const std::string& xml) {
+        try {
+            Simulation::fromString(xml, "scene.xml", ".", {dir.string(), 0});
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string twoNodes = "<Node name=\"root\" dt=\"0.001\">\n"
+                                 "  <Node name=\"a\">\n    <GridMesh/>\n    <MechanicalObject/>\n    <VTKExporter/>\n  </Node>\n"
+                                 "  <Node name=\"b\">\n    <GridMesh/>\n    <MechanicalObject/>\n    <VTKExporter/>\n  </Node>\n"
+                                 "</Node>\n";
+    CHECK_THAT(err(twoNodes), Contains("scene.xml:10: error: VTKExporter") && Contains("/root/a/VTKExporter"));
+    std::string monitors = twoNodes;
+    for (auto p = monitors.find("VTKExporter"); p != std::string::npos; p = monitors.find("VTKExporter"))
+        monitors.replace(p, 11, "Monitor indices=\"0\"");
+    CHECK_THAT(err(monitors), Contains("scene.xml:10: error: Monitor") && Contains("Monitor.csv"));
+}
+
+TEST_CASE("a Monitor refuses a constraint of another state", "[Monitor]") {
+    CHECK_THAT(errorOf("<Node name=\"root\" dt=\"0.001\">\n"
+                       "  <Node name=\"a\">\n    <GridMesh/>\n    <MechanicalObject/>\n    <FixedConstraint name=\"fix\" indices=\"0\"/>\n  </Node>\n"
+                       "  <Node name=\"b\">\n    <GridMesh resolution=\"1 1 1\"/>\n    <MechanicalObject/>\n"
+                       "    <Monitor indices=\"0\" reactionOf=\"@/root/a/fix\"/>\n  </Node>\n"
+                       "</Node>\n"),
+               Contains("scene.xml:10:") && Contains("acts on another state"));
+}

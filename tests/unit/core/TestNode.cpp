@@ -167,7 +167,14 @@ TEST_CASE("Simulation::find takes a name or a path", "[Simulation][Node]") {
     <TestCounter name="d" label="c"/>
   </Node>
 </Node>)");
-    CHECK(sim->find("c")->path() == "/root/c");
+    // a bare name must be unique in the scene: two 'c' make it ambiguous, and the error says so
+    try {
+        sim->find("c");
+        FAIL("an ambiguous name must be an error");
+    } catch (const fascia::core::Error& e) {
+        CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("'c' is ambiguous") &&
+                                              Catch::Matchers::Contains("2 components"));
+    }
     CHECK(sim->find("d")->path() == "/root/n/d");
     CHECK(sim->find("/root/n/c")->path() == "/root/n/c");
     CHECK(sim->find("n/c")->path() == "/root/n/c");

@@ -577,3 +577,17 @@ TEST_CASE("RequiredPlugin errors are located", "[SceneLoader][PluginManager]") {
         CHECK_THAT(e->what(), Contains("was built for ABI 999, this is ABI 1: rebuild it against Fascia"));
     }
 }
+
+TEST_CASE("dt, dtSafety and endTime on a child node are located errors", "[SceneLoader]") {
+    for (const char* attr : {"dt=\"0.1\"", "dtSafety=\"0.5\"", "endTime=\"1\""}) {
+        CAPTURE(attr);
+        try {
+            fascia::core::Simulation::fromString(std::string("<Node name=\"root\">\n  <Node name=\"child\" ") + attr + "/>\n</Node>\n",
+                                                 "scene.xml");
+            FAIL("expected an error");
+        } catch (const fascia::core::Error& e) {
+            CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("scene.xml:2: error: Node 'child'") &&
+                                                  Catch::Matchers::Contains("belongs on the root node"));
+        }
+    }
+}

@@ -2,6 +2,7 @@
 /// The scene graph: nodes with children and components.
 #include "fascia/base/Component.h"
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,11 @@ struct SceneContext {
     std::string outputDir = "."; ///< folder observers write into
     double time = 0.0, dt = 0.0;
     long step = 0;
+    /// Output files already claimed by a component (path -> who), so that two exporters never
+    /// write over each other's files.
+    std::map<std::string, std::string> outputs;
+    /// Claims an output file for `who`; a located error when another component has it.
+    void claimOutput(const std::string& path, const Base& who);
 };
 
 class Node : public Base {

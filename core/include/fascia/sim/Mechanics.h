@@ -28,16 +28,20 @@ public:
     Positions& f() { return m_f; }               ///< accumulated forces (N)
     Positions& x0() { return m_x0; }             ///< rest positions (m)
     Positions& reaction() { return m_reaction; } ///< reaction forces on constrained nodes (N)
+    /// External forces (N) added to every step's forces until changed: what an embedding program
+    /// (a haptic loop) writes between steps. Zero unless written.
+    Positions& externalForce() { return m_external; }
     const Positions& x() const { return m_x; }
     const Positions& v() const { return m_v; }
     const Positions& f() const { return m_f; }
     const Positions& x0() const { return m_x0; }
     const Positions& reaction() const { return m_reaction; }
+    const Positions& externalForce() const { return m_external; }
     /// Resizes every array to n nodes (positions copied from rest, velocities and forces zero).
     void resize(size_t n);
 
 protected:
-    Positions m_x, m_v, m_f, m_x0, m_reaction;
+    Positions m_x, m_v, m_f, m_x0, m_reaction, m_external;
 };
 
 /// A per-element field a force field offers to exporters and monitors.
@@ -87,7 +91,8 @@ public:
     virtual void projectPositions(BaseMechanicalState& s, double t) {}
     /// Imposes velocities at time t.
     virtual void projectVelocities(BaseMechanicalState& s, double t) {}
-    /// Zeroes constrained force components and stores the reaction (minus the removed force).
+    /// Zeroes the constrained force components. The group records the reactions (minus the
+    /// removed force, summed over every constraint) itself.
     virtual void projectForces(BaseMechanicalState& s) {}
     /// Nodes this constraint acts on (for reaction-force monitors).
     virtual const IndexList& constrainedNodes() const = 0;
@@ -120,8 +125,11 @@ struct MechanicalGroup {
     std::vector<double> invMass;   ///< 1/mass (0 where the mass is 0)
     long stepIndex = 0;            ///< the step being computed (for messages)
 
-    /// f = sum of force fields + gravity, then constraints project it (reactions recorded).
+    /// f = sum of force fields + gravity + external forces, then constraints project it; the
+    /// reaction of a constrained node is minus the force the constraints removed (the static
+    /// support force: the inertia of prescribed motion is not included).
     void computeForces(double t);
+    Positions beforeConstraints;   ///< scratch for the reactions
     /// Applies the constraints' positions and velocities at time t.
     void projectState(double t);
     /// Throws a simulation error naming the step and the component when x, v or f holds NaN/inf.

@@ -80,6 +80,8 @@ private:
     std::vector<Component*> m_all;
     double m_time = 0.0, m_dt = 0.0, m_dtOverride = 0.0;
     long m_step = 0;
+    double m_timeAtDtChange = 0.0;  ///< time and step of the last dt change: time = t0 + (step - s0) dt
+    long m_stepAtDtChange = 0;
     bool m_initialised = false, m_finished = false;
 };
 
