@@ -41,7 +41,12 @@ usage:
   --repeat R      timed repeats; the median is reported with min and max (default 5)
   --viscous       add a one-term ViscoelasticProny to the force field's node
   --determinism   also run with 1 thread and report whether positions are bitwise identical
-  --suite         the standard set of docs/performance.md
+  --suite [heml|tled|scaling]
+                  the standard sets of docs/performance.md: heml (default: HEML compressible
+                  neo-Hookean and Saint Venant-Kirchhoff on the 4.4k and 21k organ meshes and a
+                  2M-tetrahedron cube, 1 and 2 threads), tled (TLED neo-Hookean, transversely
+                  isotropic and one Prony term on 20k and 200k tetrahedra, hexahedra against
+                  tetrahedra), scaling (HEML and TLED from 20k to 200k tetrahedra)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
   --load SCENE    time to parse, build and initialise a scene (ms), median of the repeats
@@ -220,6 +225,7 @@ int parseInt(const char* v, const char* opt) {
 int main(int argc, char** argv) {
     Case c;
     bool suite = false;
+    std::string suiteName = "heml";
     int overhead = 0;
     std::string load;
     for (int i = 1; i < argc; ++i) {
@@ -246,7 +252,10 @@ int main(int argc, char** argv) {
         else if (a == "--repeat") c.repeat = parseInt(next(), "--repeat");
         else if (a == "--viscous") c.viscous = true;
         else if (a == "--determinism") c.determinism = true;
-        else if (a == "--suite") suite = true;
+        else if (a == "--suite") {
+            suite = true;
+            if (i + 1 < argc && argv[i + 1][0] != '-') suiteName = argv[++i];
+        }
         else if (a == "--overhead") overhead = parseInt(next(), "--overhead");
         else if (a == "--load") load = str("--load");
         else {
@@ -271,6 +280,46 @@ int main(int argc, char** argv) {
             if (c.mesh.empty() && c.cube == 0) c.cube = 16;
             runCase(c);
             return 0;
+        }
+        if (suiteName == "tled") {
+            // the paper's cost claims side by side in one run: fibres, viscosity, hexahedra
+            for (int cube : {15, 32}) {  // 20,250 and 196,608 tetrahedra
+                for (auto [mat, visc] : {std::pair{"NeoHookean", false}, std::pair{"TransverselyIsotropic", false},
+                                         std::pair{"NeoHookean", true}}) {
+                    Case s = c;
+                    s.forcefield = "TLED";
+                    s.material = mat;
+                    s.viscous = visc;
+                    s.cube = cube;
+                    s.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
+                    runCase(s);
+                }
+                Case h = c;  // hexahedra with as many nodes
+                h.forcefield = "TLED";
+                h.material = "NeoHookean";
+                h.cube = cube;
+                h.element = "hexahedra";
+                h.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
+                runCase(h);
+            }
+            return 0;
+        }
+        if (suiteName == "scaling") {
+            for (const char* ff : {"HEML", "TLED"})
+                for (int cube : {15, 20, 26, 32}) {  // 20k, 48k, 105k, 197k tetrahedra
+                    Case s = c;
+                    s.forcefield = ff;
+                    s.material = std::string(ff) == "HEML" ? "CompressibleNeoHookean" : "NeoHookean";
+                    s.cube = cube;
+                    s.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
+                    s.determinism = cube == 15;
+                    runCase(s);
+                }
+            return 0;
+        }
+        if (suiteName != "heml") {
+            std::cerr << "fascia-bench: unknown suite '" << suiteName << "' (heml, tled or scaling)\n";
+            return 1;
         }
         for (const char* mat : {"CompressibleNeoHookean", "StVenantKirchhoff"})
             for (const std::string mesh : {"organ_4430.msh", "organ_21436.msh", "cube70"})
