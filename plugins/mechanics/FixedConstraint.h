@@ -12,6 +12,7 @@ public:
     void projectVelocities(core::BaseMechanicalState& s, double t) override;
     void projectForces(core::BaseMechanicalState& s) override;
     const IndexList& constrainedNodes() const override { return m_nodes; }
+    std::array<bool, 3> constrainedAxes() const override { return m_mask; }
 
     NodeSelection m_select{this};
     core::Param<IndexList> m_directions{this, axisMaskSpec("directions", "constrained axes \"x y z\" as 0/1 flags: \"1 1 1\" fixes, \"0 0 1\" is a roller free in x and y"), IndexList{1, 1, 1}};

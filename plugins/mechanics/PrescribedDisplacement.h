@@ -14,6 +14,7 @@ public:
     void projectVelocities(core::BaseMechanicalState& s, double t) override;
     void projectForces(core::BaseMechanicalState& s) override;
     const IndexList& constrainedNodes() const override { return m_nodes; }
+    std::array<bool, 3> constrainedAxes() const override { return m_mask; }
 
     /// The load shape s(t) and its time derivative.
     double shape(double t) const;

@@ -122,7 +122,10 @@ void Monitor::observe(double t, long step) {
     }
     if (auto* c = m_reactionOf.get()) {
         Vec3 sum = Vec3::Zero();
-        for (int i : c->constrainedNodes()) sum += m_st->reaction()[i];
+        const auto axes = c->constrainedAxes();
+        for (int i : c->constrainedNodes())
+            for (int a = 0; a < 3; ++a)
+                if (axes[a]) sum[a] += m_st->reaction()[i][a];
         row << "," << sum[0] << "," << sum[1] << "," << sum[2];
     }
     if (!m_cellFields.empty()) {

@@ -7,8 +7,10 @@
 namespace fascia::meshio {
 
 /// A CSV of chosen nodes' positions, displacements and velocities, the summed reaction force on a
-/// constraint's nodes, and element quantities the force field provides. The first row names every
-/// column with its unit: `time [s],u12_x [m],...`.
+/// constraint's nodes (the axes it holds only), and element quantities the force field provides.
+/// The first row names every column with its unit: `time [s],u12_x [m],...`. Reactions are those
+/// of the step just computed: the forces at the start of the step (time t - dt), as explicit
+/// integration has them.
 class Monitor : public core::BaseObserver {
 public:
     void init() override;

@@ -43,7 +43,8 @@
 /// Viscoelasticity (TLED sections 3-4): a ViscoelasticProny in the same node relaxes the isochoric
 /// part (everything but the pure-J term), the volumetric (pure-J) part, or both, of S:
 ///   S^n = Phi^n - sum_i Y_i^n,  Y_i^n = A_i Phi^n + B_i Y_i^(n-1)          TLED eq. (24), (30)
-/// with one 6-component state per element and Prony term; A_i, B_i are recomputed in dtChanged().
+/// with one 6-component state per element and Prony term (structure of arrays: one array per term and
+/// stress component), updated in the vectorised element loop; A_i, B_i are recomputed in dtChanged().
 /// Two ViscoelasticProny components (one isochoric, one volumetric) may be combined. The history
 /// advances when addForce() is called at a new time t (repeated calls at the same t recompute the
 /// same step), i.e. once per step for the explicit integrators. potentialEnergy() is the elastic

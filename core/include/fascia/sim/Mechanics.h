@@ -96,6 +96,8 @@ public:
     virtual void projectForces(BaseMechanicalState& s) {}
     /// Nodes this constraint acts on (for reaction-force monitors).
     virtual const IndexList& constrainedNodes() const = 0;
+    /// Axes it holds (x, y, z): a monitor of its reaction sums only these components.
+    virtual std::array<bool, 3> constrainedAxes() const { return {true, true, true}; }
 };
 
 struct MechanicalGroup;
