@@ -275,3 +275,12 @@ TEST_CASE("a Monitor refuses a constraint of another state", "[Monitor]") {
                        "</Node>\n"),
                Contains("scene.xml:10:") && Contains("acts on another state"));
 }
+
+TEST_CASE("GridMesh parameters are checked", "[GridMesh]") {
+    auto grid = [](const std::string& attrs) { return "<Node name=\"root\">\n  <GridMesh " + attrs + "/>\n</Node>\n"; };
+    CHECK_THAT(errorOf(grid("min=\"0 0 0\" max=\"1 -1 1\"")), Contains("scene.xml:2:") && Contains("max must exceed min"));
+    CHECK_THAT(errorOf(grid("resolution=\"2 0 2\"")), Contains("scene.xml:2:") && Contains("resolution"));
+    CHECK_THAT(errorOf(grid("resolution=\"2 2\"")), Contains("scene.xml:2:") && Contains("expected 3"));
+    CHECK_THAT(errorOf(grid("element=\"prisms\"")), Contains("scene.xml:2:") && Contains("one of tetrahedra6|tetrahedra5|hexahedra"));
+    CHECK_THAT(errorOf(grid("resolution=\"1000 1000 1000\"")), Contains("scene.xml:2:") && Contains("at most 5e7"));
+}
