@@ -99,7 +99,10 @@ struct ViscoSet {
     bool iso = false, vol = false;
     int terms = 0;
     std::vector<double> A, B;
-    std::vector<double> Yprev, Ycur;  ///< 6 per (element, term), element-major, internal global order
+    /// the states Y_i of the last step and of the current evaluation, as structure of arrays: row
+    /// 6 t + c (term t, stress component c, xx yy zz xy yz xz) holds that component of every element
+    /// (index (6 t + c) * elements + e, e in internal global order: tetrahedra, then hexahedra)
+    std::vector<double> Yprev, Ycur;
 };
 
 } // namespace
@@ -144,6 +147,14 @@ struct TLEDForceField::Impl {
         if constexpr (NN == 4) return tet; else return hex;
     }
     size_t globalOffset(int kind) const { return kind == 0 ? 0 : tet.size(); }
+    /// row length of the viscous states: the element count of both kinds, padded to a multiple of 8
+    /// whose byte length is an odd multiple of 64, so that the rows of a state fall into different
+    /// cache sets (rows a multiple of 4 KiB apart alias in L1)
+    size_t stateRow() const {
+        size_t r = (tet.size() + hex.size() + 7) / 8 * 8;
+        if ((r / 8) % 2 == 0) r += 8;
+        return r;
+    }
 };
 
 namespace {
@@ -158,6 +169,7 @@ struct Batch {
     alignas(64) double I1[kBatch], I2[kBatch], J[kBatch], I4[kBatch], I6[kBatch];
     alignas(64) double W[kBatch], d1[kBatch], d2[kBatch], d4[kBatch], d6[kBatch], dJi[kBatch], dJv[kBatch];
     alignas(64) double P[9][kBatch];       ///< first Piola-Kirchhoff stress, row-major
+    alignas(64) double Siso[6][kBatch], Svol[6][kBatch], S[6][kBatch];  ///< viscous path: S and its parts
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
 };
 
@@ -172,8 +184,11 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     constexpr bool useI2 = (U & BaseMaterial::UsesI2) != 0;
     constexpr bool useI4 = (U & BaseMaterial::UsesI4) != 0;
     constexpr bool useI6 = (U & BaseMaterial::UsesI6) != 0;
-    const bool visco = !im.visco.empty();
-    const bool needS = visco || io.S || io.F;
+    // stress output: the scalar path; forces with viscosity: the vectorised viscous path; otherwise
+    // (and for the energy alone, which is the elastic one) P directly
+    const bool needS = io.S || io.F;
+    const bool viscoP = !needS && io.buf && !im.visco.empty();
+    const size_t yRow = im.stateRow();
     const size_t gOff = im.globalOffset(NN == 4 ? 0 : 1);
     const size_t cellOff = NN == 4 ? 0 : im.nTetCells;
     const size_t ne = es.size();
@@ -261,7 +276,110 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         // the law: W and dW/dI for the whole batch (inlined for built-in laws, one call otherwise)
         eval(s, n);
 
-        if (!needS) {
+        if (viscoP) {
+            // S in 6 components (xx yy zz xy yz xz): isochoric and volumetric parts, TLED eq. (10),
+            // as in the scalar path below but in short vector loops (PERFORMANCE.md lesson 3)
+#pragma omp simd
+            for (int k = 0; k < n; ++k) {
+                const size_t e = e0 + static_cast<size_t>(k);
+                const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
+                             F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
+                // cofactor matrix of F
+                const double cf0 = F4 * F8 - F5 * F7, cf1 = F5 * F6 - F3 * F8, cf2 = F3 * F7 - F4 * F6,
+                             cf3 = F2 * F7 - F1 * F8, cf4 = F0 * F8 - F2 * F6, cf5 = F1 * F6 - F0 * F7,
+                             cf6 = F1 * F5 - F2 * F4, cf7 = F2 * F3 - F0 * F5, cf8 = F0 * F4 - F1 * F3;
+                const double c1 = 2 * s.d1[k];
+                const double J = s.J[k];
+                const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
+                // J C^-1 = cof(F)^T cof(F) / J
+                const double JCi0 = (cf0 * cf0 + cf3 * cf3 + cf6 * cf6) * iJ;
+                const double JCi1 = (cf1 * cf1 + cf4 * cf4 + cf7 * cf7) * iJ;
+                const double JCi2 = (cf2 * cf2 + cf5 * cf5 + cf8 * cf8) * iJ;
+                const double JCi3 = (cf0 * cf1 + cf3 * cf4 + cf6 * cf7) * iJ;
+                const double JCi4 = (cf1 * cf2 + cf4 * cf5 + cf7 * cf8) * iJ;
+                const double JCi5 = (cf0 * cf2 + cf3 * cf5 + cf6 * cf8) * iJ;
+                double S0 = c1, S1 = c1, S2 = c1, S3 = 0, S4 = 0, S5 = 0;
+                if constexpr (useI2) {
+                    const double c2 = 2 * s.d2[k], I1 = s.I1[k];
+                    S0 += c2 * (I1 - (F0 * F0 + F3 * F3 + F6 * F6));
+                    S1 += c2 * (I1 - (F1 * F1 + F4 * F4 + F7 * F7));
+                    S2 += c2 * (I1 - (F2 * F2 + F5 * F5 + F8 * F8));
+                    S3 -= c2 * (F0 * F1 + F3 * F4 + F6 * F7);
+                    S4 -= c2 * (F1 * F2 + F4 * F5 + F7 * F8);
+                    S5 -= c2 * (F0 * F2 + F3 * F5 + F6 * F8);
+                }
+                if constexpr (useI4) {
+                    const double c4 = 2 * s.d4[k];
+                    const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                    S0 += c4 * a0 * a0; S1 += c4 * a1 * a1; S2 += c4 * a2 * a2;
+                    S3 += c4 * a0 * a1; S4 += c4 * a1 * a2; S5 += c4 * a0 * a2;
+                }
+                if constexpr (useI6) {
+                    const double c6 = 2 * s.d6[k];
+                    const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                    S0 += c6 * b0 * b0; S1 += c6 * b1 * b1; S2 += c6 * b2 * b2;
+                    S3 += c6 * b0 * b1; S4 += c6 * b1 * b2; S5 += c6 * b0 * b2;
+                }
+                const double dJi = s.dJi[k], dJv = s.dJv[k];
+                S0 += dJi * JCi0; S1 += dJi * JCi1; S2 += dJi * JCi2;
+                S3 += dJi * JCi3; S4 += dJi * JCi4; S5 += dJi * JCi5;
+                s.Siso[0][k] = S0; s.Siso[1][k] = S1; s.Siso[2][k] = S2;
+                s.Siso[3][k] = S3; s.Siso[4][k] = S4; s.Siso[5][k] = S5;
+                const double V0 = dJv * JCi0, V1 = dJv * JCi1, V2 = dJv * JCi2, V3 = dJv * JCi3, V4 = dJv * JCi4,
+                             V5 = dJv * JCi5;
+                s.Svol[0][k] = V0; s.Svol[1][k] = V1; s.Svol[2][k] = V2;
+                s.Svol[3][k] = V3; s.Svol[4][k] = V4; s.Svol[5][k] = V5;
+                s.S[0][k] = S0 + V0; s.S[1][k] = S1 + V1; s.S[2][k] = S2 + V2;
+                s.S[3][k] = S3 + V3; s.S[4][k] = S4 + V4; s.S[5][k] = S5 + V5;
+            }
+            // viscoelastic relaxation: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1)
+            // (TLED eq. (24), (30)), one short loop per series, term and component over the batch
+            for (size_t v = 0; v < im.visco.size(); ++v) {
+                const ViscoSet& vs = im.visco[v];
+                // (no coefficients yet, i.e. no time step: no relaxation)
+                const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+                for (int t = 0; t < terms; ++t) {
+                    const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+                    for (int i = 0; i < 6; ++i) {
+                        const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * yRow + gOff + e0;
+                        const double* __restrict Yh = io.Yhist[v] + row;
+                        double* __restrict Yn = io.Ynew[v] + row;
+                        const double* __restrict Ri = s.Siso[i];
+                        const double* __restrict Rv = s.Svol[i];
+                        double* __restrict Si = s.S[i];
+                        if (vs.iso && vs.vol) {
+#pragma omp simd
+                            for (int k = 0; k < n; ++k) {
+                                const double Y = A * (Ri[k] + Rv[k]) + Bc * Yh[k];
+                                Si[k] -= Y;
+                                Yn[k] = Y;
+                            }
+                        } else {
+                            // one part only (apply is isochoric, volumetric or both)
+                            const double* __restrict R = vs.iso ? Ri : Rv;
+#pragma omp simd
+                            for (int k = 0; k < n; ++k) {
+                                const double Y = A * R[k] + Bc * Yh[k];
+                                Si[k] -= Y;
+                                Yn[k] = Y;
+                            }
+                        }
+                    }
+                }
+            }
+            // P = F S
+#pragma omp simd
+            for (int k = 0; k < n; ++k) {
+                const double S0 = s.S[0][k], S1 = s.S[1][k], S2 = s.S[2][k], S3 = s.S[3][k], S4 = s.S[4][k],
+                             S5 = s.S[5][k];
+                for (int i = 0; i < 3; ++i) {
+                    const double f0 = s.F[3 * i][k], f1 = s.F[3 * i + 1][k], f2 = s.F[3 * i + 2][k];
+                    s.P[3 * i + 0][k] = f0 * S0 + f1 * S3 + f2 * S5;
+                    s.P[3 * i + 1][k] = f0 * S3 + f1 * S1 + f2 * S4;
+                    s.P[3 * i + 2][k] = f0 * S5 + f1 * S4 + f2 * S2;
+                }
+            }
+        } else if (!needS) {
             // P = 2 dI1 F + 2 dI2 (I1 F - F C) + 2 dI4 (F a0)(x)a0 + 2 dI6 (F b0)(x)b0 + dW/dJ cof F
 #pragma omp simd
             for (int k = 0; k < n; ++k) {
@@ -360,17 +478,17 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     const ViscoSet& vs = im.visco[v];
                     double R[6];
                     for (int i = 0; i < 6; ++i) R[i] = (vs.iso ? Siso[i] : 0.0) + (vs.vol ? Svol[i] : 0.0);
-                    const size_t base = (gOff + e) * static_cast<size_t>(vs.terms) * 6;
-                    const double* Yh = io.Yhist[v] + base;
-                    double* Yn = io.Ynew[v] ? io.Ynew[v] + base : nullptr;
+                    const double* Yh = io.Yhist[v] + gOff + e;  // row 6 t + i at (6 t + i) * yRow
+                    double* Yn = io.Ynew[v] ? io.Ynew[v] + gOff + e : nullptr;
                     // (no coefficients yet, i.e. no time step: no relaxation)
                     const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
                     for (int t = 0; t < terms; ++t) {
                         const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
                         for (int i = 0; i < 6; ++i) {
-                            const double Y = A * R[i] + Bc * Yh[6 * t + i];
+                            const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * yRow;
+                            const double Y = A * R[i] + Bc * Yh[row];
                             S[i] -= Y;
-                            if (Yn) Yn[6 * t + i] = Y;
+                            if (Yn) Yn[row] = Y;
                         }
                     }
                 }
@@ -975,7 +1093,7 @@ void TLEDForceField::init() {
         isoTaken |= vs.iso;
         volTaken |= vs.vol;
         vs.terms = static_cast<int>(p->termCount());
-        const size_t n = (nT + nH) * static_cast<size_t>(vs.terms) * 6;
+        const size_t n = im.stateRow() * static_cast<size_t>(vs.terms) * 6;
         vs.Yprev.assign(n, 0.0);
         vs.Ycur.assign(n, 0.0);
         im.visco.push_back(std::move(vs));
@@ -1083,7 +1201,8 @@ double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) c
         io.u = u.data();
         io.energy = &e[static_cast<size_t>(bi)];
         if (hasVisco) {
-            // the energy is the elastic one, but the kernel's viscous path reads a history: give it the committed one
+            // the energy is the elastic one (the kernel skips the viscous stresses without forces or
+            // stress output); the committed history, should it read one
             for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = im.visco[v].Yprev.data();
         }
         runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
