@@ -164,11 +164,15 @@ void Simulation::init() {
     }
 }
 
-double Simulation::criticalTimeStep() const {
+double Simulation::criticalTimeStep() const { return limitingForceField().first; }
+
+std::pair<double, const BaseForceField*> Simulation::limitingForceField() const {
     double crit = std::numeric_limits<double>::infinity();
+    const BaseForceField* limiting = nullptr;
     for (auto& g : m_groups)
-        for (auto* ff : g.forceFields) crit = std::min(crit, ff->stableTimeStep(*g.state));
-    return crit;
+        for (auto* ff : g.forceFields)
+            if (const double c = ff->stableTimeStep(*g.state); c < crit) crit = c, limiting = ff;
+    return {crit, limiting};
 }
 
 void Simulation::setDt(double dt) {
@@ -178,18 +182,12 @@ void Simulation::setDt(double dt) {
     m_timeAtDtChange = m_time;
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
-    {
-        double crit = std::numeric_limits<double>::infinity();
-        const BaseForceField* limiting = nullptr;
-        for (auto& g : m_groups)
-            for (auto* ff : g.forceFields)
-                if (double c = ff->stableTimeStep(*g.state); c < crit) crit = c, limiting = ff;
-        if (dt > crit)
-            m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
-                         " s of " + limiting->className() + " '" + limiting->path() +
-                         "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
-        for (Component* c : m_all) c->dtChanged(dt);
-    }
+    const auto [crit, limiting] = limitingForceField();
+    if (dt > crit)
+        m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
+                     " s of " + limiting->className() + " '" + limiting->path() +
+                     "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
+    for (Component* c : m_all) c->dtChanged(dt);
 }
 
 void Simulation::setOutputDir(const std::string& dir) {

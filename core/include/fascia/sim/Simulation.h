@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fascia::core {
@@ -74,6 +75,8 @@ public:
     std::vector<TimerRow> timers() const;
 
 private:
+    /// The smallest stable time step and the force field that sets it (null when none does).
+    std::pair<double, const BaseForceField*> limitingForceField() const;
     std::unique_ptr<Node> m_root;
     std::vector<MechanicalGroup> m_groups;
     std::vector<BaseObserver*> m_observers;
