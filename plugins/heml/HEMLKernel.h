@@ -134,6 +134,17 @@ struct alignas(64) Chunk {
     double f[4][3][kLanes];
     materials::Invariants inv[kLanes];
     materials::Response resp[kLanes];
+
+    /// Lane j's law response into the structure-of-arrays fields.
+    void store(int j, const materials::Response& r) {
+        W[j] = r.W;
+        dI1[j] = r.dI1;
+        dI2[j] = r.dI2;
+        dI4[j] = r.dI4;
+        dI6[j] = r.dI6;
+        dJiso[j] = r.dJiso;
+        dJvol[j] = r.dJvol;
+    }
 };
 
 /// An inlined built-in law.
@@ -154,13 +165,7 @@ struct LawEval {
             in.I6 = c.I6[j];
             materials::Response r;
             materials::evaluateLaw(law, in, J0, r);
-            c.W[j] = r.W;
-            c.dI1[j] = r.dI1;
-            c.dI2[j] = r.dI2;
-            c.dI4[j] = r.dI4;
-            c.dI6[j] = r.dI6;
-            c.dJiso[j] = r.dJiso;
-            c.dJvol[j] = r.dJvol;
+            c.store(j, r);
         }
     }
 };
@@ -175,14 +180,7 @@ struct GenericEval {
         for (int j = 0; j < kLanes; ++j) c.inv[j] = materials::Invariants{c.I1[j], c.I2[j], c.J[j], c.I4[j], c.I6[j]};
         m->evaluate(c.inv, c.resp, kLanes, J0);
         for (int j = 0; j < kLanes; ++j) {
-            const materials::Response& r = c.resp[j];
-            c.W[j] = r.W;
-            c.dI1[j] = r.dI1;
-            c.dI2[j] = r.dI2;
-            c.dI4[j] = r.dI4;
-            c.dI6[j] = r.dI6;
-            c.dJiso[j] = r.dJiso;
-            c.dJvol[j] = r.dJvol;
+            c.store(j, c.resp[j]);
         }
     }
 };

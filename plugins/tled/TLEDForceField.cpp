@@ -594,25 +594,6 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     if (io.energy) *io.energy += energy;
 }
 
-/// materials::evaluateLaw (HEML section 4.4 treatment below J0) written without a branch, so that
-/// the batch loop vectorises: the isochoric part at max(J, J0) (its J derivative dropped below J0),
-/// the volumetric part continued along its second-order Taylor polynomial at J0 below J0. Same values
-/// as evaluateLaw: above J0 the Taylor terms are exactly zero.
-template <class Law>
-inline void evaluateLawSelect(const Law& law, const Invariants& in, double J0, Response& r) {
-    const bool below = in.J < J0;
-    Invariants c = in;
-    c.J = below ? J0 : in.J;
-    r = Response{};
-    law.isochoric(c, r);
-    r.dJiso = below ? 0.0 : r.dJiso;
-    double W0, dW0, d2W0;
-    law.volumetric(c.J, W0, dW0, d2W0);
-    const double d = in.J - c.J;  // 0 above J0
-    r.W += below ? W0 + dW0 * d + 0.5 * d2W0 * d * d : W0;
-    r.dJvol = below ? dW0 + d2W0 * d : dW0;
-}
-
 /// Copies a batch's response arrays out of law results.
 template <class S>
 inline void storeResponse(S& s, int k, const Response& r) {
@@ -641,7 +622,7 @@ void kernelLaw(const Impl& im, const Block& b, const KernelIO& io) {
                           in.I4 = s.I4[k];
                           in.I6 = s.I6[k];
                           Response r;
-                          evaluateLawSelect(law, in, J0, r);
+                          materials::evaluateLaw(law, in, J0, r);  // branch-free: the batch loop vectorises
                           storeResponse(s, k, r);
                       }
                   },
