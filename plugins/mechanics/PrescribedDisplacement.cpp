@@ -5,13 +5,9 @@
 namespace fascia::mechanics {
 
 void PrescribedDisplacement::init() {
-    auto& s = contextState(*this);
-    m_nodes = m_select.resolve(*this, s);
-    m_mask = readAxisMask(*this, m_directions);
     const std::string& k = m_shape.get();
     m_kind = k == "ramp" ? 0 : k == "rampHold" ? 1 : k == "smooth" ? 2 : 3;
-    projectPositions(s, 0);
-    projectVelocities(s, 0);
+    AxisConstraint::init();  // projects the state at t = 0
 }
 
 double PrescribedDisplacement::shape(double t) const {
@@ -39,30 +35,6 @@ double PrescribedDisplacement::shapeRate(double t) const {
     case 2: return r < 1 ? 30 * r * r * (1 - r) * (1 - r) / T : 0;
     default: return 0;
     }
-}
-
-void PrescribedDisplacement::projectPositions(core::BaseMechanicalState& s, double t) {
-    const Vec3 u = shape(t) * m_displacement.get();
-    auto& x = s.x();
-    const auto& x0 = s.x0();
-    for (int i : m_nodes)
-        for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) x[i][a] = x0[i][a] + u[a];
-}
-
-void PrescribedDisplacement::projectVelocities(core::BaseMechanicalState& s, double t) {
-    const Vec3 w = shapeRate(t) * m_displacement.get();
-    auto& v = s.v();
-    for (int i : m_nodes)
-        for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) v[i][a] = w[a];
-}
-
-void PrescribedDisplacement::projectForces(core::BaseMechanicalState& s) {
-    auto& f = s.f();
-    for (int i : m_nodes)
-        for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) f[i][a] = 0;
 }
 
 } // namespace fascia::mechanics

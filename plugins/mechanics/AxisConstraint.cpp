@@ -1,8 +1,8 @@
-#include "FixedConstraint.h"
+#include "AxisConstraint.h"
 
 namespace fascia::mechanics {
 
-void FixedConstraint::init() {
+void AxisConstraint::init() {
     auto& s = contextState(*this);
     m_nodes = m_select.resolve(*this, s);
     m_mask = readAxisMask(*this, m_directions);
@@ -10,22 +10,24 @@ void FixedConstraint::init() {
     projectVelocities(s, 0);
 }
 
-void FixedConstraint::projectPositions(core::BaseMechanicalState& s, double) {
+void AxisConstraint::projectPositions(core::BaseMechanicalState& s, double t) {
+    const Vec3 u = offset(t);
     auto& x = s.x();
     const auto& x0 = s.x0();
     for (int i : m_nodes)
         for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) x[i][a] = x0[i][a];
+            if (m_mask[a]) x[i][a] = x0[i][a] + u[a];
 }
 
-void FixedConstraint::projectVelocities(core::BaseMechanicalState& s, double) {
+void AxisConstraint::projectVelocities(core::BaseMechanicalState& s, double t) {
+    const Vec3 w = rate(t);
     auto& v = s.v();
     for (int i : m_nodes)
         for (int a = 0; a < 3; ++a)
-            if (m_mask[a]) v[i][a] = 0;
+            if (m_mask[a]) v[i][a] = w[a];
 }
 
-void FixedConstraint::projectForces(core::BaseMechanicalState& s) {
+void AxisConstraint::projectForces(core::BaseMechanicalState& s) {
     auto& f = s.f();
     for (int i : m_nodes)
         for (int a = 0; a < 3; ++a)
