@@ -1,6 +1,7 @@
 #include "fascia/sim/Mechanics.h"
 #include "fascia/scene/Node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -17,26 +18,41 @@ void BaseMechanicalState::resize(size_t n) {
 
 void MechanicalGroup::computeForces(double t) {
     Positions& f = state->f();
-    std::fill(f.begin(), f.end(), Vec3::Zero());
+    const size_t n = f.size();
+    // f starts from the body and external forces (one pass), then every force field adds its own
+    const Positions& ext = state->externalForce();
+    const bool haveExt = ext.size() == n, haveGravity = !gravity.isZero();
+    const long nl = static_cast<long>(n);
+#pragma omp parallel for schedule(static) if (nl > kParallelNodes)
+    for (long i = 0; i < nl; ++i) {
+        Vec3 fi = haveExt ? ext[size_t(i)] : Vec3::Zero();
+        if (haveGravity) fi += mass[size_t(i)] * gravity;
+        f[size_t(i)] = fi;
+    }
     for (auto* ff : forceFields) {
         ScopedTimer timer(ff->timer());
         ff->addForce(*state, f, t);
     }
-    const size_t n = f.size();
-    if (!gravity.isZero())
-        for (size_t i = 0; i < n; ++i) f[i] += mass[i] * gravity;
-    const Positions& ext = state->externalForce();
-    if (ext.size() == n)
-        for (size_t i = 0; i < n; ++i) f[i] += ext[i];
     if (constraints.empty()) return;
-    beforeConstraints = f;
+    // one reaction per node, whatever the number of constraints acting on it: minus what the
+    // constraints removed, recorded at the constrained nodes only (a node listed twice is harmless)
+    Positions& r = state->reaction();
+    for (int i : reactionNodes) r[size_t(i)] = Vec3::Zero();  // (the set may change between steps)
+    reactionNodes.clear();
+    for (auto* c : constraints) {
+        const IndexList& nodes = c->constrainedNodes();
+        reactionNodes.insert(reactionNodes.end(), nodes.begin(), nodes.end());
+    }
+    beforeConstraints.resize(reactionNodes.size());
+    for (size_t k = 0; k < reactionNodes.size(); ++k) beforeConstraints[k] = f[size_t(reactionNodes[k])];
     for (auto* c : constraints) {
         ScopedTimer timer(c->timer());
         c->projectForces(*state);
     }
-    // one reaction per node, whatever the number of constraints acting on it
-    Positions& r = state->reaction();
-    for (size_t i = 0; i < n; ++i) r[i] = f[i] - beforeConstraints[i];
+    for (size_t k = 0; k < reactionNodes.size(); ++k) {
+        const size_t i = size_t(reactionNodes[k]);
+        r[i] = f[i] - beforeConstraints[k];
+    }
 }
 
 void MechanicalGroup::projectState(double t) {
@@ -62,6 +78,15 @@ std::string vecText(const Vec3& v) {
 } // namespace
 
 void MechanicalGroup::checkFinite(double t) {
+    // fast test: one pass over x and v (0 * a non-finite value is NaN, 0 * a finite one is 0); the
+    // slow one below only when it fails (it also clears a false alarm from a finite overflow)
+    const Positions& x = state->x();
+    const Positions& v = state->v();
+    const long n = static_cast<long>(std::min(x.size(), v.size()));
+    double probe = 0;
+#pragma omp parallel for schedule(static) reduction(+ : probe) if (n > kParallelNodes)
+    for (long i = 0; i < n; ++i) probe += 0.0 * (x[size_t(i)].sum() + v[size_t(i)].sum());
+    if (std::isfinite(probe) && x.size() == v.size()) return;
     const long bad = firstNonFinite(state->x());
     const long badV = firstNonFinite(state->v());
     if (bad < 0 && badV < 0) return;

@@ -2,50 +2,18 @@
 /// Internal to HEMLForceField: the element data as structure of arrays and the element loop
 /// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
 /// virtual call for any other material, or the mass-spring energy of eq. (38)).
+#include "fascia/base/Simd.h"
 #include "fascia/materials/Laws.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <algorithm>
-#include <cstdlib>
-#include <new>
 #include <vector>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 namespace fascia::heml {
 
-#if defined(__AVX__)
-/// 4x4 transpose of doubles: rows r0..r3 become columns.
-inline void transpose4(__m256d& r0, __m256d& r1, __m256d& r2, __m256d& r3) {
-    const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
-    const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
-    r0 = _mm256_permute2f128_pd(t0, t2, 0x20);
-    r1 = _mm256_permute2f128_pd(t1, t3, 0x20);
-    r2 = _mm256_permute2f128_pd(t0, t2, 0x31);
-    r3 = _mm256_permute2f128_pd(t1, t3, 0x31);
-}
-#endif
-
-/// 64-byte aligned storage for the element and node arrays.
-template <class T>
-struct AlignedAllocator {
-    using value_type = T;
-    AlignedAllocator() = default;
-    template <class U> AlignedAllocator(const AlignedAllocator<U>&) {}
-    T* allocate(size_t n) {
-        const size_t bytes = ((n * sizeof(T) + 63) / 64) * 64;
-        void* p = std::aligned_alloc(64, bytes ? bytes : 64);
-        if (!p) throw std::bad_alloc();
-        return static_cast<T*>(p);
-    }
-    void deallocate(T* p, size_t) { std::free(p); }
-    template <class U> bool operator==(const AlignedAllocator<U>&) const { return true; }
-    template <class U> bool operator!=(const AlignedAllocator<U>&) const { return false; }
-};
-using DVec = std::vector<double, AlignedAllocator<double>>;
-using IVec = std::vector<int, AlignedAllocator<int>>;
+using simd::DVec;
+using simd::IVec;
 
 /// Elements per chunk of the element loop (two AVX-512 vectors of doubles, PERFORMANCE.md lesson 3).
 constexpr int kLanes = 16;
@@ -228,28 +196,9 @@ double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) 
     for (size_t e0 = b.begin; e0 < b.end; e0 += kLanes) {
         // gather the four nodes of each element (node rows padded to 4 doubles, in-register
         // transposes: PERFORMANCE.md lesson 2)
-#if defined(__AVX__)
         for (int j = 0; j < kLanes; j += 4)
-            for (int a = 0; a < 4; ++a) {
-                const int* nd = d.node[a].data() + e0 + j;
-                __m256d r0 = _mm256_load_pd(xin + 4 * size_t(nd[0]));
-                __m256d r1 = _mm256_load_pd(xin + 4 * size_t(nd[1]));
-                __m256d r2 = _mm256_load_pd(xin + 4 * size_t(nd[2]));
-                __m256d r3 = _mm256_load_pd(xin + 4 * size_t(nd[3]));
-                transpose4(r0, r1, r2, r3);
-                _mm256_store_pd(&c.px[a][0][j], r0);
-                _mm256_store_pd(&c.px[a][1][j], r1);
-                _mm256_store_pd(&c.px[a][2][j], r2);
-            }
-#else
-        for (int j = 0; j < kLanes; ++j)
-            for (int a = 0; a < 4; ++a) {
-                const double* p = xin + 4 * size_t(d.node[a][e0 + j]);
-                c.px[a][0][j] = p[0];
-                c.px[a][1][j] = p[1];
-                c.px[a][2][j] = p[2];
-            }
-#endif
+            for (int a = 0; a < 4; ++a)
+                simd::gather4(xin, d.node[a].data() + e0 + j, 1, &c.px[a][0][j], &c.px[a][1][j], &c.px[a][2][j]);
 
         // edges, squared lengths l_k, invariants (eq. (C.1)) and J
         const double* vol = d.vol.data() + e0;
@@ -442,33 +391,9 @@ double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) 
         // scatter into the block's node buffer, in a fixed order (each row loaded, added and stored
         // before the next, so elements sharing a node add up correctly)
         if constexpr (Forces) {
-#if defined(__AVX__)
             for (int j = 0; j < kLanes; j += 4)
-                for (int a = 0; a < 4; ++a) {
-                    __m256d r0 = _mm256_load_pd(&c.f[a][0][j]);
-                    __m256d r1 = _mm256_load_pd(&c.f[a][1][j]);
-                    __m256d r2 = _mm256_load_pd(&c.f[a][2][j]);
-                    __m256d r3 = _mm256_setzero_pd();
-                    transpose4(r0, r1, r2, r3);
-                    const int* nd = d.node[a].data() + e0 + j;
-                    double* p0 = buf + 4 * size_t(nd[0]);
-                    _mm256_store_pd(p0, _mm256_add_pd(_mm256_load_pd(p0), r0));
-                    double* p1 = buf + 4 * size_t(nd[1]);
-                    _mm256_store_pd(p1, _mm256_add_pd(_mm256_load_pd(p1), r1));
-                    double* p2 = buf + 4 * size_t(nd[2]);
-                    _mm256_store_pd(p2, _mm256_add_pd(_mm256_load_pd(p2), r2));
-                    double* p3 = buf + 4 * size_t(nd[3]);
-                    _mm256_store_pd(p3, _mm256_add_pd(_mm256_load_pd(p3), r3));
-                }
-#else
-            for (int j = 0; j < kLanes; ++j)
-                for (int a = 0; a < 4; ++a) {
-                    double* p = buf + 4 * size_t(d.node[a][e0 + j]);
-                    p[0] += c.f[a][0][j];
-                    p[1] += c.f[a][1][j];
-                    p[2] += c.f[a][2][j];
-                }
-#endif
+                for (int a = 0; a < 4; ++a)
+                    simd::scatterAdd4(buf, d.node[a].data() + e0 + j, 1, &c.f[a][0][j], &c.f[a][1][j], &c.f[a][2][j]);
         }
     }
     return energy;

@@ -2,6 +2,7 @@
 
 #include "ViscoelasticProny.h"
 #include "fascia/base/Error.h"
+#include "fascia/base/Simd.h"
 #include "fascia/materials/Laws.h"
 #include "fascia/scene/Node.h"
 
@@ -21,8 +22,9 @@ using materials::Response;
 
 namespace {
 
-/// Elements per block of the deterministic reduction (fixed: never depends on the thread count).
-constexpr size_t kBlockElements = 2048;
+/// Elements per block of the deterministic reduction (fixed: never depends on the thread count):
+/// tetrahedra, and hexahedra (about 4 times the work each; smaller blocks balance the threads).
+constexpr size_t kBlockTets = 2048, kBlockHexes = 512;
 /// Elements per batch inside a block: F, invariants and responses of a batch stay in L1.
 constexpr int kBatch = 32;
 /// Nodes per tile of the buffer reduction.
@@ -55,7 +57,7 @@ struct ElementSet {
     std::vector<double> a0, b0; ///< fibre directions, rows x y z (empty when no law uses them)
     std::vector<int> orig;      ///< index in the input list of its kind
     std::vector<double> length; ///< characteristic length L_e (m)
-    std::vector<double> gamma;  ///< hexahedra: hourglass vectors, rows 8q + a
+    std::vector<double> hgC;    ///< hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, rows 3q + i
     std::vector<double> hgK;    ///< hexahedra: hourglass stiffness K (N/m)
     size_t size() const { return vol.size(); }
     void finish() {
@@ -63,7 +65,7 @@ struct ElementSet {
         dN = NN == 4 ? transposeRows(dN, 12, 3) : transposeRows(dN, 24);
         if (!a0.empty()) a0 = transposeRows(a0, 3);
         if (!b0.empty()) b0 = transposeRows(b0, 3);
-        if (!gamma.empty()) gamma = transposeRows(gamma, 32);
+        if (!hgC.empty()) hgC = transposeRows(hgC, 12);
     }
 };
 
@@ -171,6 +173,8 @@ struct Batch {
     alignas(64) double P[9][kBatch];       ///< first Piola-Kirchhoff stress, row-major
     alignas(64) double Siso[6][kBatch], Svol[6][kBatch], S[6][kBatch];  ///< viscous path: S and its parts
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
+    alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: K h_q, rows 3q + j
+    alignas(64) double Whg[NN == 8 ? kBatch : 1];      ///< hexahedra: hourglass energy
 };
 
 /// The element loop of one block, in short passes over batches of elements (PERFORMANCE.md lessons
@@ -206,7 +210,12 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
 
         // gather u = x - X (precomputed per node, padded to 4; forming F from displacements keeps it
         // accurate, lesson 6)
-        for (int k = 0; k < n; ++k) {
+        int kq = 0;
+        for (; kq + 4 <= n; kq += 4) {
+            const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
+            for (int a = 0; a < NN; ++a) simd::gather4(u4, nd + a, NN, &s.u[a][0][kq], &s.u[a][1][kq], &s.u[a][2][kq]);
+        }
+        for (int k = kq; k < n; ++k) {
             const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
             for (int a = 0; a < NN; ++a) {
                 const double* up = u4 + 4 * static_cast<size_t>(nd[a]);
@@ -507,8 +516,43 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             }
         }
 
-        if (io.energy)
+        if constexpr (NN == 8) {
+            // hourglass control (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with gamma_qa = h_qa - c_q . dN_a/dX,
+            // c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q (F - I = grad u); energy
+            // K/2 sum_q |h_q|^2. Kh_q = K h_q goes to the force loop below.
+            if (io.buf || io.energy) {
+                // (short loops over the batch, one per component: PERFORMANCE.md lesson 3)
+                const double* __restrict K = es.hgK.data() + e0;
+                double* __restrict w = s.Whg;
+                for (int k = 0; k < n; ++k) w[k] = 0;
+                for (int q = 0; q < 4; ++q) {
+                    const double* __restrict c0 = es.hgC.data() + (3 * q) * ne + e0;
+                    const double* __restrict c1 = c0 + ne;
+                    const double* __restrict c2 = c1 + ne;
+                    for (int j = 0; j < 3; ++j) {
+                        const double* __restrict Fj0 = s.F[3 * j];
+                        const double* __restrict Fj1 = s.F[3 * j + 1];
+                        const double* __restrict Fj2 = s.F[3 * j + 2];
+                        const double d0 = j == 0, d1 = j == 1, d2 = j == 2;
+                        double* __restrict Kh = s.Kh[3 * q + j];
+#pragma omp simd
+                        for (int k = 0; k < n; ++k) {
+                            double h = 0;
+                            for (int a = 0; a < 8; ++a) h += kHourglass[q][a] * s.u[a][j][k];
+                            h -= (Fj0[k] - d0) * c0[k] + (Fj1[k] - d1) * c1[k] + (Fj2[k] - d2) * c2[k];
+                            w[k] += 0.5 * K[k] * h * h;
+                            Kh[k] = K[k] * h;
+                        }
+                    }
+                }
+            }
+        }
+
+        if (io.energy) {
             for (int k = 0; k < n; ++k) energy += vol[e0 + static_cast<size_t>(k)] * s.W[k];
+            if constexpr (NN == 8)
+                for (int k = 0; k < n; ++k) energy += s.Whg[k];
+        }
 
         if (io.buf) {
             // f_a = -V P dN_a/dX (TLED eq. (1)-(3))
@@ -516,9 +560,9 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             for (int k = 0; k < n; ++k) {
                 const size_t e = e0 + static_cast<size_t>(k);
                 const double V = vol[e];
-                const double P0 = V * s.P[0][k], P1 = V * s.P[1][k], P2 = V * s.P[2][k], P3 = V * s.P[3][k],
-                             P4 = V * s.P[4][k], P5 = V * s.P[5][k], P6 = V * s.P[6][k], P7 = V * s.P[7][k],
-                             P8 = V * s.P[8][k];
+                double P0 = V * s.P[0][k], P1 = V * s.P[1][k], P2 = V * s.P[2][k], P3 = V * s.P[3][k],
+                       P4 = V * s.P[4][k], P5 = V * s.P[5][k], P6 = V * s.P[6][k], P7 = V * s.P[7][k],
+                       P8 = V * s.P[8][k];
                 if constexpr (NN == 4) {
                     double s0 = 0, s1 = 0, s2 = 0;
                     for (int a = 1; a < 4; ++a) {
@@ -537,50 +581,43 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     s.f[0][1][k] = -s1;
                     s.f[0][2][k] = -s2;
                 } else {
+                    // with hourglass control: -K sum_q gamma_qa h_q = -sum_q h_qa Kh_q + M dN_a/dX, M = sum_q Kh_q (x) c_q,
+                    // so f_a = -(V P - M) dN_a/dX - sum_q h_qa Kh_q
+                    const double* __restrict hgC = es.hgC.data();
+                    for (int q = 0; q < 4; ++q) {
+                        const double c0 = hgC[(3 * q) * ne + e], c1 = hgC[(3 * q + 1) * ne + e], c2 = hgC[(3 * q + 2) * ne + e];
+                        const double k0 = s.Kh[3 * q][k], k1 = s.Kh[3 * q + 1][k], k2 = s.Kh[3 * q + 2][k];
+                        P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
+                        P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
+                        P6 -= k2 * c0; P7 -= k2 * c1; P8 -= k2 * c2;
+                    }
+                    // (fully unrolled: a loop left over the nodes turns the dN loads into emulated gathers)
+#pragma GCC unroll 8
                     for (int a = 0; a < NN; ++a) {
                         const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
-                        s.f[a][0][k] = -(P0 * g0 + P1 * g1 + P2 * g2);
-                        s.f[a][1][k] = -(P3 * g0 + P4 * g1 + P5 * g2);
-                        s.f[a][2][k] = -(P6 * g0 + P7 * g1 + P8 * g2);
-                    }
-                }
-            }
-        }
-
-        if constexpr (NN == 8) {
-            // hourglass control: f_a -= K sum_q gamma_qa h_q, h_q = sum_b gamma_qb u_b; energy K/2 sum_q |h_q|^2
-            if (io.buf || io.energy) {
-                const double* __restrict gam = es.gamma.data();
-                const double* __restrict hgK = es.hgK.data();
-                for (int k = 0; k < n; ++k) {
-                    const size_t e = e0 + static_cast<size_t>(k);
-                    const double K = hgK[e];
-                    if (!(K > 0)) continue;
-                    for (int q = 0; q < 4; ++q) {
-                        double h0 = 0, h1 = 0, h2 = 0;
-                        for (int a = 0; a < 8; ++a) {
-                            const double g = gam[(8 * q + a) * ne + e];
-                            h0 += g * s.u[a][0][k];
-                            h1 += g * s.u[a][1][k];
-                            h2 += g * s.u[a][2][k];
+                        double f0 = -(P0 * g0 + P1 * g1 + P2 * g2), f1 = -(P3 * g0 + P4 * g1 + P5 * g2),
+                               f2 = -(P6 * g0 + P7 * g1 + P8 * g2);
+#pragma GCC unroll 4
+                        for (int q = 0; q < 4; ++q) {
+                            f0 -= kHourglass[q][a] * s.Kh[3 * q][k];
+                            f1 -= kHourglass[q][a] * s.Kh[3 * q + 1][k];
+                            f2 -= kHourglass[q][a] * s.Kh[3 * q + 2][k];
                         }
-                        if (io.energy) energy += 0.5 * K * (h0 * h0 + h1 * h1 + h2 * h2);
-                        if (io.buf)
-                            for (int a = 0; a < 8; ++a) {
-                                const double g = K * gam[(8 * q + a) * ne + e];
-                                s.f[a][0][k] -= g * h0;
-                                s.f[a][1][k] -= g * h1;
-                                s.f[a][2][k] -= g * h2;
-                            }
+                        s.f[a][0][k] = f0;
+                        s.f[a][1][k] = f1;
+                        s.f[a][2][k] = f2;
                     }
                 }
             }
-        }
 
-        if (io.buf) {
-            // scatter into the block's node buffer
+            // scatter into the block's node buffer (a fixed order: batch quads, then nodes, then elements)
             double* __restrict buf = io.buf;
-            for (int k = 0; k < n; ++k) {
+            for (kq = 0; kq + 4 <= n; kq += 4) {
+                const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
+                for (int a = 0; a < NN; ++a)
+                    simd::scatterAdd4(buf, nd + a, NN, &s.f[a][0][kq], &s.f[a][1][kq], &s.f[a][2][kq], b.nodeLo);
+            }
+            for (int k = kq; k < n; ++k) {
                 const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
                 for (int a = 0; a < NN; ++a) {
                     double* fa = buf + 4 * static_cast<size_t>(nd[a] - b.nodeLo);
@@ -991,21 +1028,18 @@ void TLEDForceField::init() {
                     dN[3 * a + i] = Bs[a][i] / V;
                     sumB2 += dN[3 * a + i] * dN[3 * a + i];
                 }
-            // hourglass vectors gamma_k = h_k - (h_k . X) dN/dX (Flanagan-Belytschko)
-            double gam[32];
-            for (int q = 0; q < 4; ++q) {
-                double hx[3] = {0, 0, 0};
+            // hourglass control (Flanagan-Belytschko): gamma_q = h_q - (c_q . dN/dX), c_q = sum_a h_qa X_a; the loop
+            // needs c_q only (see runKernel)
+            double hc[12] = {};
+            for (int q = 0; q < 4; ++q)
                 for (int a = 0; a < 8; ++a)
-                    for (int i = 0; i < 3; ++i) hx[i] += kHourglass[q][a] * P[a][i];
-                for (int a = 0; a < 8; ++a)
-                    gam[8 * q + a] = kHourglass[q][a] - (hx[0] * dN[3 * a] + hx[1] * dN[3 * a + 1] + hx[2] * dN[3 * a + 2]);
-            }
+                    for (int i = 0; i < 3; ++i) hc[3 * q + i] += kHourglass[q][a] * P[a][i];
             const double absV = std::abs(V);
             for (int a = 0; a < 8; ++a) s.nodes.push_back(h[a]);
             s.dN.insert(s.dN.end(), dN, dN + 24);
             s.vol.push_back(absV);
             s.orig.push_back(static_cast<int>(e));
-            s.gamma.insert(s.gamma.end(), gam, gam + 32);
+            s.hgC.insert(s.hgC.end(), hc, hc + 12);
             s.hgK.push_back(m_hourglass.get() * g.pModulus * absV * sumB2 / 8.0);
             double amax = 0;
             for (auto& f : kHexFaces)
@@ -1025,12 +1059,13 @@ void TLEDForceField::init() {
     // internal order: tetrahedra by group, then hexahedra by group; fixed blocks within each group
     size_t bufSize = 0;
     auto addBlocks = [&](int kind, size_t gi, size_t begin, size_t end) {
-        for (size_t b0 = begin; b0 < end; b0 += kBlockElements) {
+        const size_t blockSize = kind == 0 ? kBlockTets : kBlockHexes;
+        for (size_t b0 = begin; b0 < end; b0 += blockSize) {
             Block b;
             b.kind = kind;
             b.group = static_cast<int>(gi);
             b.begin = b0;
-            b.end = std::min(end, b0 + kBlockElements);
+            b.end = std::min(end, b0 + blockSize);
             int lo = std::numeric_limits<int>::max(), hi = -1;
             const std::vector<int>& nodes = kind == 0 ? im.tet.nodes : im.hex.nodes;
             const size_t nn = kind == 0 ? 4 : 8;
@@ -1097,14 +1132,14 @@ void runBlock(const Impl& im, const Block& b, const KernelIO& io) {
     im.groups[static_cast<size_t>(b.group)].fn(im, b, io);
 }
 
-/// u = x - X for the nodes the elements use, 4 per node (the 4th is padding).
+/// u = x - X for the nodes the elements use, 4 per node (the 4th is padding). An orphaned "omp for":
+/// shared by the threads of an enclosing parallel region, serial outside one.
 void displacements(const core::BaseMechanicalState& state, std::vector<double>& u, size_t nodes) {
-    u.resize(4 * nodes);
     const Vec3* x = state.x().data();
     const Vec3* X = state.x0().data();
     const long n = static_cast<long>(nodes);
     double* up = u.data();
-#pragma omp parallel for schedule(static) if (n > 65536)
+#pragma omp for schedule(static)
     for (long i = 0; i < n; ++i) {
         up[4 * i] = x[i][0] - X[i][0];
         up[4 * i + 1] = x[i][1] - X[i][1];
@@ -1130,39 +1165,44 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
         im.haveCur = true;
         im.curTime = t;
     }
-    displacements(state, im.u, im.nodeCount);
+    im.u.resize(4 * im.nodeCount);
     const double* u = im.u.data();
     const long nb = static_cast<long>(m_blocks.size());
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-    for (long bi = 0; bi < nb; ++bi) {
-        const Block& b = m_blocks[static_cast<size_t>(bi)];
-        double* buf = im.buf.data() + b.bufOffset;
-        std::fill(buf, buf + 4 * static_cast<size_t>(b.nodeHi - b.nodeLo + 1), 0.0);
-        KernelIO io;
-        io.u = u;
-        io.buf = buf;
-        for (size_t v = 0; v < im.visco.size(); ++v) {
-            io.Yhist[v] = im.visco[v].Yprev.data();
-            io.Ynew[v] = im.visco[v].Ycur.data();
-        }
-        runBlock(im, b, io);
-    }
-    // sum the block buffers per node, in block order (bitwise the same for any thread count)
     const long nNodes = static_cast<long>(im.nodeCount);
     const long nTiles = (nNodes + kNodeTile - 1) / kNodeTile;
-#pragma omp parallel for schedule(static) if (nTiles > 1)
-    for (long tile = 0; tile < nTiles; ++tile) {
-        const int lo = static_cast<int>(tile * kNodeTile);
-        const int hi = static_cast<int>(std::min<long>(nNodes, (tile + 1) * kNodeTile)) - 1;
-        for (const Block& b : m_blocks) {
-            const int a = std::max(lo, b.nodeLo), z = std::min(hi, b.nodeHi);
-            const double* buf = im.buf.data() + b.bufOffset;
-            for (int n = a; n <= z; ++n) {
-                const double* src = buf + 4 * static_cast<size_t>(n - b.nodeLo);
-                Vec3& fn = f[static_cast<size_t>(n)];
-                fn[0] += src[0];
-                fn[1] += src[1];
-                fn[2] += src[2];
+    // one parallel region: displacements, the blocks, then the sum of the block buffers
+#pragma omp parallel if (nb > 1)
+    {
+        displacements(state, im.u, im.nodeCount);
+#pragma omp for schedule(dynamic, 1)
+        for (long bi = 0; bi < nb; ++bi) {
+            const Block& b = m_blocks[static_cast<size_t>(bi)];
+            double* buf = im.buf.data() + b.bufOffset;
+            std::fill(buf, buf + 4 * static_cast<size_t>(b.nodeHi - b.nodeLo + 1), 0.0);
+            KernelIO io;
+            io.u = u;
+            io.buf = buf;
+            for (size_t v = 0; v < im.visco.size(); ++v) {
+                io.Yhist[v] = im.visco[v].Yprev.data();
+                io.Ynew[v] = im.visco[v].Ycur.data();
+            }
+            runBlock(im, b, io);
+        }
+        // sum the block buffers per node, in block order (bitwise the same for any thread count)
+#pragma omp for schedule(static)
+        for (long tile = 0; tile < nTiles; ++tile) {
+            const int lo = static_cast<int>(tile * kNodeTile);
+            const int hi = static_cast<int>(std::min<long>(nNodes, (tile + 1) * kNodeTile)) - 1;
+            for (const Block& b : m_blocks) {
+                const int a = std::max(lo, b.nodeLo), z = std::min(hi, b.nodeHi);
+                const double* buf = im.buf.data() + b.bufOffset;
+                for (int n = a; n <= z; ++n) {
+                    const double* src = buf + 4 * static_cast<size_t>(n - b.nodeLo);
+                    Vec3& fn = f[static_cast<size_t>(n)];
+                    fn[0] += src[0];
+                    fn[1] += src[1];
+                    fn[2] += src[2];
+                }
             }
         }
     }
@@ -1172,7 +1212,7 @@ double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     const Impl& im = *m_impl;
     if (state.size() < im.nodeCount) return std::numeric_limits<double>::quiet_NaN();
     std::vector<double> e(m_blocks.size(), 0.0);
-    std::vector<double> u;
+    std::vector<double> u(4 * im.nodeCount);
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
     const bool hasVisco = !im.visco.empty();
@@ -1197,7 +1237,7 @@ void TLEDForceField::stresses(const core::BaseMechanicalState& state, double t, 
     const Impl& im = *m_impl;
     S.assign(6 * elementCount(), 0.0);
     if (state.size() < im.nodeCount) return;
-    std::vector<double> u;
+    std::vector<double> u(4 * im.nodeCount);
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
 #pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
@@ -1217,7 +1257,7 @@ void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vecto
     if (state.size() < im.nodeCount) return;
     const double t = node() ? node()->context().time : im.curTime;
     std::vector<double> S(6 * n, 0.0), F(9 * n, 0.0);
-    std::vector<double> u;
+    std::vector<double> u(4 * im.nodeCount);
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
 #pragma omp parallel for schedule(dynamic, 1) if (nb > 1)

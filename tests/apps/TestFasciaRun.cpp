@@ -122,7 +122,8 @@ TEST_CASE("fascia-run runs a good scene and prints the summary line", "[fascia-r
     CHECK(s.steps == 10);
     CHECK(s.simulated == Approx(0.1));
     CHECK(s.wall >= 0);
-    CHECK(s.msPerStep == Approx(1e3 * s.wall / 10).margin(1e-3));
+    // the wall time is printed to 1 ms: ms/step agrees with it to that resolution over 10 steps
+    CHECK(s.msPerStep == Approx(1e3 * s.wall / 10).margin(0.05 + 1e-3));
     CHECK(r.err.empty());  // not a terminal: no progress bar
 }
 

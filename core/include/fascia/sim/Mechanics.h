@@ -102,6 +102,10 @@ public:
 
 struct MechanicalGroup;
 
+/// Node loops of the framework (forces, integrators, checks) run on the OpenMP threads above this
+/// many nodes; below it a parallel region costs more than it saves.
+constexpr long kParallelNodes = 16384;
+
 /// Advances the states of its subtree by one step.
 class BaseIntegrator : public Component {
 public:
@@ -131,7 +135,8 @@ struct MechanicalGroup {
     /// reaction of a constrained node is minus the force the constraints removed (the static
     /// support force: the inertia of prescribed motion is not included).
     void computeForces(double t);
-    Positions beforeConstraints;   ///< scratch for the reactions
+    Positions beforeConstraints;   ///< scratch for the reactions: f at reactionNodes before the constraints
+    IndexList reactionNodes;       ///< the constrained nodes of the last computeForces
     /// Applies the constraints' positions and velocities at time t.
     void projectState(double t);
     /// Throws a simulation error naming the step and the component when x, v or f holds NaN/inf.

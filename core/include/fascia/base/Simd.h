@@ -1,0 +1,98 @@
+#pragma once
+/// Helpers shared by the element loops of the force fields (HEML, TLED and plugins): 64-byte
+/// aligned storage, and the move of node data between node rows (4 doubles per node, the 4th is
+/// padding) and structure-of-arrays batches of elements with in-register transposes
+/// (../shared/PERFORMANCE.md lesson 2: hardware gathers and masked scatters are slower).
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+#include <vector>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+namespace fascia::simd {
+
+/// 64-byte aligned storage for element and node arrays.
+template <class T>
+struct AlignedAllocator {
+    using value_type = T;
+    AlignedAllocator() = default;
+    template <class U> AlignedAllocator(const AlignedAllocator<U>&) {}
+    T* allocate(size_t n) {
+        const size_t bytes = ((n * sizeof(T) + 63) / 64) * 64;
+        void* p = std::aligned_alloc(64, bytes ? bytes : 64);
+        if (!p) throw std::bad_alloc();
+        return static_cast<T*>(p);
+    }
+    void deallocate(T* p, size_t) { std::free(p); }
+    template <class U> bool operator==(const AlignedAllocator<U>&) const { return true; }
+    template <class U> bool operator!=(const AlignedAllocator<U>&) const { return false; }
+};
+using DVec = std::vector<double, AlignedAllocator<double>>;
+using IVec = std::vector<int, AlignedAllocator<int>>;
+
+#if defined(__AVX__)
+/// 4x4 transpose of doubles: rows r0..r3 become columns.
+inline void transpose4(__m256d& r0, __m256d& r1, __m256d& r2, __m256d& r3) {
+    const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+    const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+    r0 = _mm256_permute2f128_pd(t0, t2, 0x20);
+    r1 = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r2 = _mm256_permute2f128_pd(t0, t2, 0x31);
+    r3 = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+#endif
+
+/// Four elements' node rows into structure of arrays: rows[4 idx[i * stride]] (x y z pad) of element
+/// i = 0..3 go to x[i], y[i], z[i]. x, y and z must be 32-byte aligned.
+inline void gather4(const double* rows, const int* idx, size_t stride, double* x, double* y, double* z) {
+#if defined(__AVX__)
+    __m256d r0 = _mm256_loadu_pd(rows + 4 * size_t(idx[0]));
+    __m256d r1 = _mm256_loadu_pd(rows + 4 * size_t(idx[stride]));
+    __m256d r2 = _mm256_loadu_pd(rows + 4 * size_t(idx[2 * stride]));
+    __m256d r3 = _mm256_loadu_pd(rows + 4 * size_t(idx[3 * stride]));
+    transpose4(r0, r1, r2, r3);
+    _mm256_store_pd(x, r0);
+    _mm256_store_pd(y, r1);
+    _mm256_store_pd(z, r2);
+#else
+    for (size_t i = 0; i < 4; ++i) {
+        const double* p = rows + 4 * size_t(idx[i * stride]);
+        x[i] = p[0];
+        y[i] = p[1];
+        z[i] = p[2];
+    }
+#endif
+}
+
+/// The reverse, adding: rows[4 (idx[i * stride] - base)] += (x[i], y[i], z[i]) for i = 0..3 in that
+/// order (each row is loaded, added and stored before the next, so elements sharing a node add up
+/// correctly and always in the same order). x, y and z must be 32-byte aligned.
+inline void scatterAdd4(double* rows, const int* idx, size_t stride, const double* x, const double* y, const double* z,
+                        int base = 0) {
+#if defined(__AVX__)
+    __m256d r0 = _mm256_load_pd(x);
+    __m256d r1 = _mm256_load_pd(y);
+    __m256d r2 = _mm256_load_pd(z);
+    __m256d r3 = _mm256_setzero_pd();
+    transpose4(r0, r1, r2, r3);
+    double* p0 = rows + 4 * size_t(idx[0] - base);
+    _mm256_storeu_pd(p0, _mm256_add_pd(_mm256_loadu_pd(p0), r0));
+    double* p1 = rows + 4 * size_t(idx[stride] - base);
+    _mm256_storeu_pd(p1, _mm256_add_pd(_mm256_loadu_pd(p1), r1));
+    double* p2 = rows + 4 * size_t(idx[2 * stride] - base);
+    _mm256_storeu_pd(p2, _mm256_add_pd(_mm256_loadu_pd(p2), r2));
+    double* p3 = rows + 4 * size_t(idx[3 * stride] - base);
+    _mm256_storeu_pd(p3, _mm256_add_pd(_mm256_loadu_pd(p3), r3));
+#else
+    for (size_t i = 0; i < 4; ++i) {
+        double* p = rows + 4 * size_t(idx[i * stride] - base);
+        p[0] += x[i];
+        p[1] += y[i];
+        p[2] += z[i];
+    }
+#endif
+}
+
+} // namespace fascia::simd
