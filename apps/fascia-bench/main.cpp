@@ -51,6 +51,11 @@ usage:
                   (ConstantForce) against the same scene with none
   --load SCENE    time to parse, build and initialise a scene (ms), median of the repeats
 
+The cases of one suite line (the tled suite's four cases per size, the scaling suite's HEML and
+TLED per size) run side by side: built first, then timed in rounds, one repeat of each per round;
+step_time_vs_first and per_element_vs_first are medians over the rounds of the ratio to the first
+case of the line, robust to a noisy machine.
+
 Each case prints one JSON object: forcefield, material, mesh, elements, nodes, threads, precision,
 steps, ms_per_step (median), ms_min, ms_max, ns_per_element_step.
 )";
@@ -121,42 +126,74 @@ std::unique_ptr<Simulation> build(const Case& c, int threads) {
     return sim;
 }
 
-void runCase(const Case& c) {
-    auto sim = build(c, c.threads);
-    auto* ff = dynamic_cast<BaseForceField*>(sim->find("ff"));
-    const size_t elements = ff ? ff->elementCount() : 0;
-    const size_t nodes = sim->state("state").size();
-    sim->run(5);  // warm-up
-    std::vector<double> ms;
-    for (int r = 0; r < c.repeat; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        sim->run(c.steps);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / c.steps);
+/// Times the cases side by side: every case is built and warmed up first, then the repeats run in
+/// rounds (each round times every case once), so that a slow spell of a noisy machine hits all of
+/// them alike. Beside its own median, each case after the first reports the median over the rounds
+/// of its time divided by the first case's time in the same round (docs/performance.md).
+void runCases(const std::vector<Case>& cs) {
+    const size_t nc = cs.size();
+    std::vector<std::unique_ptr<Simulation>> sims;
+    std::vector<size_t> elements(nc), nodes(nc);
+    for (size_t i = 0; i < nc; ++i) {
+        sims.push_back(build(cs[i], cs[i].threads));
+        auto* ff = dynamic_cast<BaseForceField*>(sims[i]->find("ff"));
+        elements[i] = ff ? ff->elementCount() : 0;
+        nodes[i] = sims[i]->state("state").size();
+        sims[i]->run(5);  // warm-up
     }
-    std::sort(ms.begin(), ms.end());
-    const double med = ms[ms.size() / 2];
-    std::string identical;
-    if (c.determinism) {
-        auto a = build(c, 1), b = build(c, c.threads);
-        omp_set_num_threads(1);  // the force fields read the thread count when they run
-        a->run(50);
-        omp_set_num_threads(c.threads);
-        b->run(50);
-        bool same = true;
-        auto& xa = a->state("state").x();
-        auto& xb = b->state("state").x();
-        for (size_t i = 0; i < xa.size() && same; ++i) same = (xa[i].array() == xb[i].array()).all();
-        identical = std::string(", \"bitwise_identical_1_vs_") + std::to_string(c.threads) + "_threads\": " + (same ? "true" : "false");
+    std::vector<std::vector<double>> ms(nc), ratio(nc);
+    std::vector<std::vector<double>> rounds(cs[0].repeat, std::vector<double>(nc));
+    for (int r = 0; r < cs[0].repeat; ++r)
+        for (size_t j = 0; j < nc; ++j) {
+            const size_t i = r % 2 == 0 ? j : nc - 1 - j;  // alternate the order: no case always runs first
+            omp_set_num_threads(cs[i].threads);
+            const auto t0 = std::chrono::steady_clock::now();
+            sims[i]->run(cs[i].steps);
+            ms[i].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+                            cs[i].steps);
+            rounds[size_t(r)][i] = ms[i].back();
+        }
+    for (auto& t : rounds)
+        for (size_t i = 1; i < nc; ++i) ratio[i].push_back(t[i] / t[0]);
+    for (size_t i = 0; i < nc; ++i) {
+        const Case& c = cs[i];
+        std::vector<double> t = ms[i];
+        std::sort(t.begin(), t.end());
+        const double med = t[t.size() / 2];
+        std::string extra;
+        if (i > 0) {
+            std::sort(ratio[i].begin(), ratio[i].end());
+            char buf[160];
+            // per element: the step-time ratio scaled by the element counts
+            const double rq = ratio[i][ratio[i].size() / 2];
+            std::snprintf(buf, sizeof buf, ", \"step_time_vs_first\": %.4f, \"per_element_vs_first\": %.4f", rq,
+                          rq * double(elements[0]) / double(std::max<size_t>(1, elements[i])));
+            extra = buf;
+        }
+        if (c.determinism) {
+            auto a = build(c, 1), b = build(c, c.threads);
+            omp_set_num_threads(1);  // the force fields read the thread count when they run
+            a->run(50);
+            omp_set_num_threads(c.threads);
+            b->run(50);
+            bool same = true;
+            auto& xa = a->state("state").x();
+            auto& xb = b->state("state").x();
+            for (size_t k = 0; k < xa.size() && same; ++k) same = (xa[k].array() == xb[k].array()).all();
+            extra += std::string(", \"bitwise_identical_1_vs_") + std::to_string(c.threads) + "_threads\": " + (same ? "true" : "false");
+        }
+        std::printf("{\"forcefield\": \"%s\", \"material\": \"%s\"%s, \"mesh\": \"%s\", \"elements\": %zu, \"nodes\": %zu, "
+                    "\"threads\": %d, \"precision\": \"double\", \"steps\": %d, \"ms_per_step\": %.5f, \"ms_min\": %.5f, "
+                    "\"ms_max\": %.5f, \"ns_per_element_step\": %.3f%s}\n",
+                    c.forcefield.c_str(), c.material.c_str(), c.viscous ? ", \"viscoelastic\": true" : "",
+                    c.mesh.empty() ? ("cube" + std::to_string(c.cube) + "-" + c.element).c_str() : fs::path(c.mesh).filename().c_str(),
+                    elements[i], nodes[i], c.threads, c.steps, med, t.front(), t.back(),
+                    elements[i] ? med * 1e6 / double(elements[i]) : 0.0, extra.c_str());
     }
-    std::printf("{\"forcefield\": \"%s\", \"material\": \"%s\"%s, \"mesh\": \"%s\", \"elements\": %zu, \"nodes\": %zu, "
-                "\"threads\": %d, \"precision\": \"double\", \"steps\": %d, \"ms_per_step\": %.5f, \"ms_min\": %.5f, "
-                "\"ms_max\": %.5f, \"ns_per_element_step\": %.3f%s}\n",
-                c.forcefield.c_str(), c.material.c_str(), c.viscous ? ", \"viscoelastic\": true" : "",
-                c.mesh.empty() ? ("cube" + std::to_string(c.cube) + "-" + c.element).c_str() : fs::path(c.mesh).filename().c_str(),
-                elements, nodes, c.threads, c.steps, med, ms.front(), ms.back(), elements ? med * 1e6 / double(elements) : 0.0,
-                identical.c_str());
     std::fflush(stdout);
 }
+
+void runCase(const Case& c) { runCases({c}); }
 
 void runOverhead(int components, int steps, int repeat) {
     auto scene = [](int n) {
@@ -288,6 +325,7 @@ int main(int argc, char** argv) {
         if (suiteName == "tled") {
             // the paper's cost claims side by side in one run: fibres, viscosity, hexahedra
             for (int cube : {15, 32}) {  // 20,250 and 196,608 tetrahedra
+                std::vector<Case> group;
                 for (auto [mat, visc] : {std::pair{"NeoHookean", false}, std::pair{"TransverselyIsotropic", false},
                                          std::pair{"NeoHookean", true}}) {
                     Case s = c;
@@ -296,29 +334,29 @@ int main(int argc, char** argv) {
                     s.viscous = visc;
                     s.cube = cube;
                     s.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
-                    runCase(s);
+                    group.push_back(s);
                 }
-                Case h = c;  // hexahedra with as many nodes
-                h.forcefield = "TLED";
-                h.material = "NeoHookean";
-                h.cube = cube;
+                Case h = group[0];  // hexahedra with as many nodes
                 h.element = "hexahedra";
-                h.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
-                runCase(h);
+                group.push_back(h);
+                runCases(group);
             }
             return 0;
         }
         if (suiteName == "scaling") {
-            for (const char* ff : {"HEML", "TLED"})
-                for (int cube : {15, 20, 26, 32}) {  // 20k, 48k, 105k, 197k tetrahedra
+            for (int cube : {15, 20, 26, 32}) {  // 20k, 48k, 105k, 197k tetrahedra
+                std::vector<Case> group;
+                for (const char* ff : {"HEML", "TLED"}) {
                     Case s = c;
                     s.forcefield = ff;
                     s.material = std::string(ff) == "HEML" ? "CompressibleNeoHookean" : "NeoHookean";
                     s.cube = cube;
                     s.steps = cube > 20 ? std::min(c.steps, 100) : c.steps;
                     s.determinism = cube == 15;
-                    runCase(s);
+                    group.push_back(s);
                 }
+                runCases(group);
+            }
             return 0;
         }
         if (suiteName != "heml") {

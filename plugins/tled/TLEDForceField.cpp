@@ -54,7 +54,7 @@ struct ElementSet {
     std::vector<int> nodes;     ///< NN per element (AoS)
     std::vector<double> dN;     ///< dN_a/dX: rows 3a + j (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3))
     std::vector<double> vol;    ///< rest volume (m^3)
-    std::vector<double> a0, b0; ///< fibre directions, rows x y z (empty when no law uses them)
+    std::vector<double> a0, b0; ///< fibre directions per element, rows x y z (empty unless a fibre array gives them)
     std::vector<int> orig;      ///< index in the input list of its kind
     std::vector<double> length; ///< characteristic length L_e (m)
     std::vector<double> hgC;    ///< hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, rows 3q + i
@@ -101,10 +101,10 @@ struct ViscoSet {
     bool iso = false, vol = false;
     int terms = 0;
     std::vector<double> A, B;
-    /// the states Y_i of the last step and of the current evaluation, as structure of arrays: row
-    /// 6 t + c (term t, stress component c, xx yy zz xy yz xz) holds that component of every element
-    /// (index (6 t + c) * elements + e, e in internal global order: tetrahedra, then hexahedra)
-    std::vector<double> Yprev, Ycur;
+    /// the states Y_i of the last step and of the current evaluation, batch by batch (one contiguous
+    /// stream per array): batch m of the elements (Block::batchBase + local batch) holds, for each
+    /// term t and stress component c (xx yy zz xy yz xz), kBatch values at ((m terms + t) 6 + c) kBatch
+    simd::DVec Yprev, Ycur;
 };
 
 } // namespace
@@ -118,6 +118,7 @@ struct KernelIO {
     double* F = nullptr;       ///< 9 per cell (cell order)
     const double* Yhist[2] = {nullptr, nullptr};
     double* Ynew[2] = {nullptr, nullptr};
+    bool streamY = false;      ///< write Ynew with streaming stores (large states)
 };
 
 struct TLEDForceField::Impl {
@@ -129,7 +130,9 @@ struct TLEDForceField::Impl {
         double pModulus = 0;        ///< bulk + 4/3 shear (Pa)
         const void* law = nullptr;  ///< the inlined law, when the material is a built-in one
         KernelFn fn = nullptr;
+        double a0[3] = {1, 0, 0}, b0[3] = {0, 1, 0};  ///< fibre directions when not given per element
     };
+    bool fibresPerElement = false;  ///< a fibre array gives the directions (ElementSet::a0, b0), else Group::a0, b0
     ElementSet<4> tet;
     ElementSet<8> hex;
     std::vector<Group> groups;
@@ -148,15 +151,8 @@ struct TLEDForceField::Impl {
     template <int NN> ElementSet<NN>& set() {
         if constexpr (NN == 4) return tet; else return hex;
     }
-    size_t globalOffset(int kind) const { return kind == 0 ? 0 : tet.size(); }
-    /// row length of the viscous states: the element count of both kinds, padded to a multiple of 8
-    /// whose byte length is an odd multiple of 64, so that the rows of a state fall into different
-    /// cache sets (rows a multiple of 4 KiB apart alias in L1)
-    size_t stateRow() const {
-        size_t r = (tet.size() + hex.size() + 7) / 8 * 8;
-        if ((r / 8) % 2 == 0) r += 8;
-        return r;
-    }
+    size_t batches = 0;        ///< element batches of all blocks (the viscous states hold one slot per batch)
+    bool streamStates = false; ///< viscous states too large for the caches: streaming stores
 };
 
 namespace {
@@ -172,6 +168,7 @@ struct Batch {
     alignas(64) double W[kBatch], d1[kBatch], d2[kBatch], d4[kBatch], d6[kBatch], dJi[kBatch], dJv[kBatch];
     alignas(64) double P[9][kBatch];       ///< first Piola-Kirchhoff stress, row-major
     alignas(64) double Siso[6][kBatch], Svol[6][kBatch], S[6][kBatch];  ///< viscous path: S and its parts
+    alignas(64) double Ytmp[kBatch];       ///< viscous path: a state row on its way to a streaming store
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
     alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: K h_q, rows 3q + j
     alignas(64) double Whg[NN == 8 ? kBatch : 1];      ///< hexahedra: hourglass energy
@@ -192,13 +189,18 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     // (and for the energy alone, which is the elastic one) P directly
     const bool needS = io.S || io.F;
     const bool viscoP = !needS && io.buf && !im.visco.empty();
-    const size_t yRow = im.stateRow();
-    const size_t gOff = im.globalOffset(NN == 4 ? 0 : 1);
     const size_t cellOff = NN == 4 ? 0 : im.nTetCells;
     const size_t ne = es.size();
     const double* __restrict dN = es.dN.data();
-    const double* __restrict A0 = es.a0.data();
-    const double* __restrict B0 = es.b0.data();
+    // fibre directions: per element, or the group's, copied across a batch-wide row (same loops)
+    const Impl::Group& grp = im.groups[static_cast<size_t>(b.group)];
+    alignas(64) double uniformFibre[6][kBatch];
+    if (!im.fibresPerElement && (useI4 || useI6))
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < kBatch; ++k) {
+                uniformFibre[c][k] = grp.a0[c];
+                uniformFibre[3 + c][k] = grp.b0[c];
+            }
     const double* __restrict vol = es.vol.data();
     const double* __restrict u4 = io.u;
 
@@ -207,6 +209,20 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
 
     for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
         const int n = static_cast<int>(std::min<size_t>(kBatch, b.end - e0));
+        const size_t batch = b.batchBase + (e0 - b.begin) / kBatch;  // slot of the viscous states
+        const bool perElement = im.fibresPerElement;
+        const double* __restrict A0x = perElement && useI4 ? es.a0.data() + e0 : uniformFibre[0];
+        const double* __restrict A0y = perElement && useI4 ? es.a0.data() + ne + e0 : uniformFibre[1];
+        const double* __restrict A0z = perElement && useI4 ? es.a0.data() + 2 * ne + e0 : uniformFibre[2];
+        const double* __restrict B0x = perElement && useI6 ? es.b0.data() + e0 : uniformFibre[3];
+        const double* __restrict B0y = perElement && useI6 ? es.b0.data() + ne + e0 : uniformFibre[4];
+        const double* __restrict B0z = perElement && useI6 ? es.b0.data() + 2 * ne + e0 : uniformFibre[5];
+        if (viscoP && e0 + kBatch < b.end)
+            // the states of the next batch are read once per step, usually from memory: ask early
+            for (size_t v = 0; v < im.visco.size(); ++v) {
+                const size_t len = static_cast<size_t>(im.visco[v].terms) * 6 * kBatch;
+                simd::prefetch(io.Yhist[v] + (batch + 1) * len, len * sizeof(double));
+            }
 
         // gather u = x - X (precomputed per node, padded to 4; forming F from displacements keeps it
         // accurate, lesson 6)
@@ -269,12 +285,12 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             s.I2[k] = I2;
             double I4 = 1, I6 = 1;
             if constexpr (useI4) {
-                const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                const double a0 = A0x[k], a1 = A0y[k], a2 = A0z[k];
                 const double f0 = F0 * a0 + F1 * a1 + F2 * a2, f1 = F3 * a0 + F4 * a1 + F5 * a2, f2 = F6 * a0 + F7 * a1 + F8 * a2;
                 I4 = f0 * f0 + f1 * f1 + f2 * f2;  // a0 . C a0
             }
             if constexpr (useI6) {
-                const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                const double b0 = B0x[k], b1 = B0y[k], b2 = B0z[k];
                 const double f0 = F0 * b0 + F1 * b1 + F2 * b2, f1 = F3 * b0 + F4 * b1 + F5 * b2, f2 = F6 * b0 + F7 * b1 + F8 * b2;
                 I6 = f0 * f0 + f1 * f1 + f2 * f2;  // b0 . C b0
             }
@@ -290,7 +306,6 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             // as in the scalar path below but in short vector loops (PERFORMANCE.md lesson 3)
 #pragma omp simd
             for (int k = 0; k < n; ++k) {
-                const size_t e = e0 + static_cast<size_t>(k);
                 const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
                              F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
                 // cofactor matrix of F
@@ -319,13 +334,13 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 }
                 if constexpr (useI4) {
                     const double c4 = 2 * s.d4[k];
-                    const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                    const double a0 = A0x[k], a1 = A0y[k], a2 = A0z[k];
                     S0 += c4 * a0 * a0; S1 += c4 * a1 * a1; S2 += c4 * a2 * a2;
                     S3 += c4 * a0 * a1; S4 += c4 * a1 * a2; S5 += c4 * a0 * a2;
                 }
                 if constexpr (useI6) {
                     const double c6 = 2 * s.d6[k];
-                    const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                    const double b0 = B0x[k], b1 = B0y[k], b2 = B0z[k];
                     S0 += c6 * b0 * b0; S1 += c6 * b1 * b1; S2 += c6 * b2 * b2;
                     S3 += c6 * b0 * b1; S4 += c6 * b1 * b2; S5 += c6 * b0 * b2;
                 }
@@ -347,12 +362,15 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 const ViscoSet& vs = im.visco[v];
                 // (no coefficients yet, i.e. no time step: no relaxation)
                 const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+                const size_t slot = batch * static_cast<size_t>(vs.terms) * 6 * kBatch;
+                // large states: Y goes to a scratch row, then to memory with streaming stores
+                const bool stream = io.streamY && n == kBatch;
                 for (int t = 0; t < terms; ++t) {
                     const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
                     for (int i = 0; i < 6; ++i) {
-                        const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * yRow + gOff + e0;
+                        const size_t row = slot + (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
                         const double* __restrict Yh = io.Yhist[v] + row;
-                        double* __restrict Yn = io.Ynew[v] + row;
+                        double* __restrict Yn = stream ? s.Ytmp : io.Ynew[v] + row;
                         const double* __restrict Ri = s.Siso[i];
                         const double* __restrict Rv = s.Svol[i];
                         double* __restrict Si = s.S[i];
@@ -373,6 +391,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                                 Yn[k] = Y;
                             }
                         }
+                        if (stream) simd::streamCopy(io.Ynew[v] + row, s.Ytmp, kBatch);
                     }
                 }
             }
@@ -392,7 +411,6 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             // P = 2 dI1 F + 2 dI2 (I1 F - F C) + 2 dI4 (F a0)(x)a0 + 2 dI6 (F b0)(x)b0 + dW/dJ cof F
 #pragma omp simd
             for (int k = 0; k < n; ++k) {
-                const size_t e = e0 + static_cast<size_t>(k);
                 const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
                              F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
                 const double c1 = 2 * s.d1[k], cj = s.dJi[k] + s.dJv[k];
@@ -419,7 +437,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 }
                 if constexpr (useI4) {
                     const double c4 = 2 * s.d4[k];
-                    const double a0 = A0[e], a1 = A0[ne + e], a2 = A0[2 * ne + e];
+                    const double a0 = A0x[k], a1 = A0y[k], a2 = A0z[k];
                     const double f0 = c4 * (F0 * a0 + F1 * a1 + F2 * a2), f1 = c4 * (F3 * a0 + F4 * a1 + F5 * a2),
                                  f2 = c4 * (F6 * a0 + F7 * a1 + F8 * a2);
                     P0 += f0 * a0; P1 += f0 * a1; P2 += f0 * a2;
@@ -428,7 +446,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 }
                 if constexpr (useI6) {
                     const double c6 = 2 * s.d6[k];
-                    const double b0 = B0[e], b1 = B0[ne + e], b2 = B0[2 * ne + e];
+                    const double b0 = B0x[k], b1 = B0y[k], b2 = B0z[k];
                     const double f0 = c6 * (F0 * b0 + F1 * b1 + F2 * b2), f1 = c6 * (F3 * b0 + F4 * b1 + F5 * b2),
                                  f2 = c6 * (F6 * b0 + F7 * b1 + F8 * b2);
                     P0 += f0 * b0; P1 += f0 * b1; P2 += f0 * b2;
@@ -466,12 +484,12 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     for (int i = 3; i < 6; ++i) Siso[i] -= c2 * C[i];
                 }
                 if constexpr (useI4) {
-                    const double a[3] = {A0[e], A0[ne + e], A0[2 * ne + e]};
+                    const double a[3] = {A0x[k], A0y[k], A0z[k]};
                     Siso[0] += c4 * a[0] * a[0]; Siso[1] += c4 * a[1] * a[1]; Siso[2] += c4 * a[2] * a[2];
                     Siso[3] += c4 * a[0] * a[1]; Siso[4] += c4 * a[1] * a[2]; Siso[5] += c4 * a[0] * a[2];
                 }
                 if constexpr (useI6) {
-                    const double bb[3] = {B0[e], B0[ne + e], B0[2 * ne + e]};
+                    const double bb[3] = {B0x[k], B0y[k], B0z[k]};
                     Siso[0] += c6 * bb[0] * bb[0]; Siso[1] += c6 * bb[1] * bb[1]; Siso[2] += c6 * bb[2] * bb[2];
                     Siso[3] += c6 * bb[0] * bb[1]; Siso[4] += c6 * bb[1] * bb[2]; Siso[5] += c6 * bb[0] * bb[2];
                 }
@@ -487,14 +505,15 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     const ViscoSet& vs = im.visco[v];
                     double R[6];
                     for (int i = 0; i < 6; ++i) R[i] = (vs.iso ? Siso[i] : 0.0) + (vs.vol ? Svol[i] : 0.0);
-                    const double* Yh = io.Yhist[v] + gOff + e;  // row 6 t + i at (6 t + i) * yRow
-                    double* Yn = io.Ynew[v] ? io.Ynew[v] + gOff + e : nullptr;
+                    const size_t at = batch * static_cast<size_t>(vs.terms) * 6 * kBatch + static_cast<size_t>(k);
+                    const double* Yh = io.Yhist[v] + at;  // term t, component i at (6 t + i) kBatch
+                    double* Yn = io.Ynew[v] ? io.Ynew[v] + at : nullptr;
                     // (no coefficients yet, i.e. no time step: no relaxation)
                     const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
                     for (int t = 0; t < terms; ++t) {
                         const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
                         for (int i = 0; i < 6; ++i) {
-                            const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * yRow;
+                            const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
                             const double Y = A * R[i] + Bc * Yh[row];
                             S[i] -= Y;
                             if (Yn) Yn[row] = Y;
@@ -934,6 +953,20 @@ void TLEDForceField::init() {
         return d / len;
     };
 
+    // fibre directions: per element from the arrays, else one per group (its material's)
+    im.fibresPerElement = fibreA || fibreB;
+    if (!im.fibresPerElement)
+        for (auto& g : im.groups) {
+            if (g.uses & BaseMaterial::UsesI4) {
+                const Vec3 a = direction(0, g, g.kind, 0);
+                for (int c = 0; c < 3; ++c) g.a0[c] = a[c];
+            }
+            if (g.uses & BaseMaterial::UsesI6) {
+                const Vec3 b = direction(1, g, g.kind, 0);
+                for (int c = 0; c < 3; ++c) g.b0[c] = b[c];
+            }
+        }
+
     // geometry
     auto fillTet = [&](size_t gi, const std::vector<size_t>& elems) {
         ElementSet<4>& s = im.tet;
@@ -971,11 +1004,11 @@ void TLEDForceField::init() {
             double amax = 0;
             for (auto& f : faces) amax = std::max(amax, 0.5 * (*pts[f[1]] - *pts[f[0]]).cross(*pts[f[2]] - *pts[f[0]]).norm());
             s.length.push_back(3 * V / amax);
-            if (anyI4) {
+            if (anyI4 && im.fibresPerElement) {
                 const Vec3 a = (g.uses & BaseMaterial::UsesI4) ? direction(0, g, 0, e) : Vec3(1, 0, 0);
                 s.a0.insert(s.a0.end(), {a[0], a[1], a[2]});
             }
-            if (anyI6) {
+            if (anyI6 && im.fibresPerElement) {
                 const Vec3 b = (g.uses & BaseMaterial::UsesI6) ? direction(1, g, 0, e) : Vec3(0, 1, 0);
                 s.b0.insert(s.b0.end(), {b[0], b[1], b[2]});
             }
@@ -1045,11 +1078,11 @@ void TLEDForceField::init() {
             for (auto& f : kHexFaces)
                 amax = std::max(amax, 0.5 * (P[f[2]] - P[f[0]]).cross(P[f[3]] - P[f[1]]).norm());
             s.length.push_back(absV / amax);
-            if (anyI4) {
+            if (anyI4 && im.fibresPerElement) {
                 const Vec3 a = (g.uses & BaseMaterial::UsesI4) ? direction(0, g, 1, e) : Vec3(1, 0, 0);
                 s.a0.insert(s.a0.end(), {a[0], a[1], a[2]});
             }
-            if (anyI6) {
+            if (anyI6 && im.fibresPerElement) {
                 const Vec3 b = (g.uses & BaseMaterial::UsesI6) ? direction(1, g, 1, e) : Vec3(0, 1, 0);
                 s.b0.insert(s.b0.end(), {b[0], b[1], b[2]});
             }
@@ -1076,6 +1109,8 @@ void TLEDForceField::init() {
             b.nodeLo = lo;
             b.nodeHi = hi;
             b.bufOffset = bufSize;
+            b.batchBase = im.batches;
+            im.batches += (b.end - b.begin + kBatch - 1) / kBatch;
             bufSize += 4 * static_cast<size_t>(hi - lo + 1);
             m_blocks.push_back(b);
         }
@@ -1098,6 +1133,7 @@ void TLEDForceField::init() {
 
     // viscoelasticity
     bool isoTaken = false, volTaken = false;
+    size_t stateBytes = 0;
     for (auto* p : node()->findAllLocal<viscoelastic::ViscoelasticProny>()) {
         ViscoSet vs;
         vs.prony = p;
@@ -1109,11 +1145,15 @@ void TLEDForceField::init() {
         isoTaken |= vs.iso;
         volTaken |= vs.vol;
         vs.terms = static_cast<int>(p->termCount());
-        const size_t n = im.stateRow() * static_cast<size_t>(vs.terms) * 6;
+        const size_t n = im.batches * static_cast<size_t>(vs.terms) * 6 * kBatch;
         vs.Yprev.assign(n, 0.0);
         vs.Ycur.assign(n, 0.0);
+        stateBytes += 2 * n * sizeof(double);
         im.visco.push_back(std::move(vs));
     }
+    // states beyond a quarter of a typical L3 (32 MiB here) are written with streaming stores: they
+    // are read once per step and would only evict the element data (docs/performance.md)
+    im.streamStates = stateBytes > (size_t(8) << 20);
     const double dt = node()->context().dt;
     if (dt > 0) dtChanged(dt);
 }
@@ -1186,7 +1226,9 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
                 io.Yhist[v] = im.visco[v].Yprev.data();
                 io.Ynew[v] = im.visco[v].Ycur.data();
             }
+            io.streamY = im.streamStates;
             runBlock(im, b, io);
+            if (io.streamY) simd::streamFence();
         }
         // sum the block buffers per node, in block order (bitwise the same for any thread count)
 #pragma omp for schedule(static)

@@ -137,6 +137,7 @@ private:
         size_t begin = 0, end = 0;  ///< internal element range of its kind
         int nodeLo = 0, nodeHi = -1;  ///< node range its elements touch
         size_t bufOffset = 0;         ///< 3 * offset into the block buffers
+        size_t batchBase = 0;         ///< index of its first element batch among all blocks (viscous states)
     };
     std::vector<Block> m_blocks;
     friend struct Impl;

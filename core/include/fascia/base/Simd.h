@@ -95,4 +95,33 @@ inline void scatterAdd4(double* rows, const int* idx, size_t stride, const doubl
 #endif
 }
 
+/// dst[0..n) = src[0..n) with non-temporal (streaming) stores where the CPU has them: for large
+/// arrays written now and read next step, this avoids reading dst into the cache first and keeps
+/// it from evicting data that stays hot. dst and src 64-byte aligned, n a multiple of 8. Call
+/// streamFence() before another thread reads dst.
+inline void streamCopy(double* dst, const double* src, size_t n) {
+#if defined(__AVX512F__)
+    for (size_t i = 0; i < n; i += 8) _mm512_stream_pd(dst + i, _mm512_load_pd(src + i));
+#elif defined(__AVX__)
+    for (size_t i = 0; i < n; i += 4) _mm256_stream_pd(dst + i, _mm256_load_pd(src + i));
+#else
+    for (size_t i = 0; i < n; ++i) dst[i] = src[i];
+#endif
+}
+/// Prefetches [p, p + bytes) into the cache (a hint; no effect without SSE).
+inline void prefetch(const void* p, size_t bytes) {
+#if defined(__SSE__)
+    const char* c = static_cast<const char*>(p);
+    for (size_t i = 0; i < bytes; i += 64) _mm_prefetch(c + i, _MM_HINT_T0);
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+inline void streamFence() {
+#if defined(__AVX__)
+    _mm_sfence();
+#endif
+}
+
 } // namespace fascia::simd
