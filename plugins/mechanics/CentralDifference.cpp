@@ -21,7 +21,10 @@ void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     }
     const double c1 = 1.0 / (1.0 + 0.5 * alpha * dt), c2 = 1.0 - 0.5 * alpha * dt, dt2 = dt * dt;
     const bool haveTwo = h.steps > 0;
-    for (size_t i = 0; i < n; ++i) {
+    const long nl = static_cast<long>(n);
+#pragma omp parallel for schedule(static) if (nl > core::kParallelNodes)
+    for (long l = 0; l < nl; ++l) {
+        const size_t i = static_cast<size_t>(l);
         const Vec3 xn = x[i];
         const Vec3 next = c1 * (2.0 * xn - c2 * h.prev[i] + dt2 * g.invMass[i] * f[i]);
         // velocity at n+1: second-order backward difference once two steps exist, else the

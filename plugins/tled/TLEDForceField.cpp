@@ -170,7 +170,7 @@ struct Batch {
     alignas(64) double Siso[6][kBatch], Svol[6][kBatch], S[6][kBatch];  ///< viscous path: S and its parts
     alignas(64) double Ytmp[kBatch];       ///< viscous path: a state row on its way to a streaming store
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
-    alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: K h_q, rows 3q + j
+    alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
     alignas(64) double Whg[NN == 8 ? kBatch : 1];      ///< hexahedra: hourglass energy
 };
 
@@ -538,30 +538,39 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         if constexpr (NN == 8) {
             // hourglass control (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with gamma_qa = h_qa - c_q . dN_a/dX,
             // c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q (F - I = grad u); energy
-            // K/2 sum_q |h_q|^2. Kh_q = K h_q goes to the force loop below.
+            // K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are done as sums and
+            // differences of node pairs (18 additions per component instead of 32 multiply-adds).
             if (io.buf || io.energy) {
-                // (short loops over the batch, one per component: PERFORMANCE.md lesson 3)
-                const double* __restrict K = es.hgK.data() + e0;
-                double* __restrict w = s.Whg;
-                for (int k = 0; k < n; ++k) w[k] = 0;
-                for (int q = 0; q < 4; ++q) {
-                    const double* __restrict c0 = es.hgC.data() + (3 * q) * ne + e0;
-                    const double* __restrict c1 = c0 + ne;
-                    const double* __restrict c2 = c1 + ne;
-                    for (int j = 0; j < 3; ++j) {
-                        const double* __restrict Fj0 = s.F[3 * j];
-                        const double* __restrict Fj1 = s.F[3 * j + 1];
-                        const double* __restrict Fj2 = s.F[3 * j + 2];
-                        const double d0 = j == 0, d1 = j == 1, d2 = j == 2;
-                        double* __restrict Kh = s.Kh[3 * q + j];
+                const double* __restrict C = es.hgC.data() + e0;  // row 3q + i at C + (3q + i) ne
+                for (int j = 0; j < 3; ++j) {
+                    const double* __restrict u0 = s.u[0][j], *__restrict u1 = s.u[1][j], *__restrict u2 = s.u[2][j],
+                                             *__restrict u3 = s.u[3][j], *__restrict u4 = s.u[4][j], *__restrict u5 = s.u[5][j],
+                                             *__restrict u6 = s.u[6][j], *__restrict u7 = s.u[7][j];
+                    const double* __restrict Fj0 = s.F[3 * j];
+                    const double* __restrict Fj1 = s.F[3 * j + 1];
+                    const double* __restrict Fj2 = s.F[3 * j + 2];
+                    const double d0 = j == 0, d1 = j == 1, d2 = j == 2;
+                    double* __restrict H0 = s.Kh[j], *__restrict H1 = s.Kh[3 + j], *__restrict H2 = s.Kh[6 + j],
+                                       *__restrict H3 = s.Kh[9 + j];
 #pragma omp simd
-                        for (int k = 0; k < n; ++k) {
-                            double h = 0;
-                            for (int a = 0; a < 8; ++a) h += kHourglass[q][a] * s.u[a][j][k];
-                            h -= (Fj0[k] - d0) * c0[k] + (Fj1[k] - d1) * c1[k] + (Fj2[k] - d2) * c2[k];
-                            w[k] += 0.5 * K[k] * h * h;
-                            Kh[k] = K[k] * h;
-                        }
+                    for (int k = 0; k < n; ++k) {
+                        const double d01 = u0[k] - u1[k], d23 = u2[k] - u3[k], d45 = u4[k] - u5[k], d67 = u6[k] - u7[k];
+                        const double a01 = u0[k] + u1[k], a23 = u2[k] + u3[k], a45 = u4[k] + u5[k], a67 = u6[k] + u7[k];
+                        const double X = d01 + d23, Y = d45 + d67;
+                        const double g0 = Fj0[k] - d0, g1 = Fj1[k] - d1, g2 = Fj2[k] - d2;
+                        const size_t e = static_cast<size_t>(k);
+                        H0[k] = (X + Y) - (g0 * C[e] + g1 * C[ne + e] + g2 * C[2 * ne + e]);                         // ( 1,-1, 1,-1, 1,-1, 1,-1)
+                        H1[k] = (a01 - a23) + (a67 - a45) - (g0 * C[3 * ne + e] + g1 * C[4 * ne + e] + g2 * C[5 * ne + e]);  // ( 1, 1,-1,-1,-1,-1, 1, 1)
+                        H2[k] = (d01 - d23) + (d67 - d45) - (g0 * C[6 * ne + e] + g1 * C[7 * ne + e] + g2 * C[8 * ne + e]);  // ( 1,-1,-1, 1,-1, 1, 1,-1)
+                        H3[k] = (Y - X) - (g0 * C[9 * ne + e] + g1 * C[10 * ne + e] + g2 * C[11 * ne + e]);           // (-1, 1,-1, 1, 1,-1, 1,-1)
+                    }
+                }
+                if (io.energy) {
+                    const double* __restrict K = es.hgK.data() + e0;
+                    for (int k = 0; k < n; ++k) {
+                        double w = 0;
+                        for (int r = 0; r < 12; ++r) w += s.Kh[r][k] * s.Kh[r][k];
+                        s.Whg[k] = 0.5 * K[k] * w;
                     }
                 }
             }
@@ -600,12 +609,28 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     s.f[0][1][k] = -s1;
                     s.f[0][2][k] = -s2;
                 } else {
-                    // with hourglass control: -K sum_q gamma_qa h_q = -sum_q h_qa Kh_q + M dN_a/dX, M = sum_q Kh_q (x) c_q,
-                    // so f_a = -(V P - M) dN_a/dX - sum_q h_qa Kh_q
+                    // with hourglass control: -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q,
+                    // so f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q
                     const double* __restrict hgC = es.hgC.data();
+                    const double K = es.hgK[e];
+                    double r[3][8];  // K sum_q h_qa h_q per component, the pair sums of the loop above reversed
+#pragma GCC unroll 3
+                    for (int j = 0; j < 3; ++j) {
+                        const double g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
+                        const double p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
+                        r[j][0] = p + sm;
+                        r[j][1] = sp - p;
+                        r[j][2] = m - sp;
+                        r[j][3] = -m - sm;
+                        r[j][4] = m - sm;
+                        r[j][5] = -m - sp;
+                        r[j][6] = p + sp;
+                        r[j][7] = sm - p;
+                    }
+#pragma GCC unroll 4
                     for (int q = 0; q < 4; ++q) {
                         const double c0 = hgC[(3 * q) * ne + e], c1 = hgC[(3 * q + 1) * ne + e], c2 = hgC[(3 * q + 2) * ne + e];
-                        const double k0 = s.Kh[3 * q][k], k1 = s.Kh[3 * q + 1][k], k2 = s.Kh[3 * q + 2][k];
+                        const double k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
                         P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
                         P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
                         P6 -= k2 * c0; P7 -= k2 * c1; P8 -= k2 * c2;
@@ -614,14 +639,8 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
 #pragma GCC unroll 8
                     for (int a = 0; a < NN; ++a) {
                         const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
-                        double f0 = -(P0 * g0 + P1 * g1 + P2 * g2), f1 = -(P3 * g0 + P4 * g1 + P5 * g2),
-                               f2 = -(P6 * g0 + P7 * g1 + P8 * g2);
-#pragma GCC unroll 4
-                        for (int q = 0; q < 4; ++q) {
-                            f0 -= kHourglass[q][a] * s.Kh[3 * q][k];
-                            f1 -= kHourglass[q][a] * s.Kh[3 * q + 1][k];
-                            f2 -= kHourglass[q][a] * s.Kh[3 * q + 2][k];
-                        }
+                        const double f0 = -(P0 * g0 + P1 * g1 + P2 * g2) - r[0][a], f1 = -(P3 * g0 + P4 * g1 + P5 * g2) - r[1][a],
+                                     f2 = -(P6 * g0 + P7 * g1 + P8 * g2) - r[2][a];
                         s.f[a][0][k] = f0;
                         s.f[a][1][k] = f1;
                         s.f[a][2][k] = f2;

@@ -103,8 +103,9 @@ public:
 struct MechanicalGroup;
 
 /// Node loops of the framework (forces, integrators, checks) run on the OpenMP threads above this
-/// many nodes; below it a parallel region costs more than it saves.
-constexpr long kParallelNodes = 16384;
+/// many nodes; below it a parallel region costs more than it saves (at 4,096 nodes the parallel
+/// loops gave 5-10 % of a 2-thread step, docs/performance.md).
+constexpr long kParallelNodes = 2048;
 
 /// Advances the states of its subtree by one step.
 class BaseIntegrator : public Component {
