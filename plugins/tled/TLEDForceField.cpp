@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 namespace fascia::tled {
 
@@ -169,6 +170,7 @@ struct Batch {
     alignas(64) double P[9][kBatch];       ///< first Piola-Kirchhoff stress, row-major
     alignas(64) double Siso[6][kBatch], Svol[6][kBatch], S[6][kBatch];  ///< viscous path: S and its parts
     alignas(64) double Ytmp[kBatch];       ///< viscous path: a state row on its way to a streaming store
+    alignas(64) double Y6[6][kBatch];      ///< the same for the six rows of a one-term series
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
     alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
     alignas(64) double Whg[NN == 8 ? kBatch : 1];      ///< hexahedra: hourglass energy
@@ -302,109 +304,148 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         eval(s, n);
 
         if (viscoP) {
-            // S in 6 components (xx yy zz xy yz xz): isochoric and volumetric parts, TLED eq. (10),
-            // as in the scalar path below but in short vector loops (PERFORMANCE.md lesson 3)
+            // S in 6 components (xx yy zz xy yz xz): isochoric and volumetric parts, TLED eq. (10), as in
+            // the scalar path below but vectorised. One series of one term (the TLED paper's models) is
+            // relaxed and turned into P in the same loop; otherwise short loops per series, term and
+            // component follow (PERFORMANCE.md lesson 3).
+            const ViscoSet* one = im.visco.size() == 1 && im.visco[0].terms == 1 && im.visco[0].A.size() == 1 ? &im.visco[0] : nullptr;
+            const double A1 = one ? one->A[0] : 0.0, B1 = one ? one->B[0] : 0.0;
+            const double wIso = one && one->iso ? 1.0 : 0.0, wVol = one && one->vol ? 1.0 : 0.0;
+            const bool stream1 = one && io.streamY && n == kBatch;
+            const double* __restrict Yh1 = one ? io.Yhist[0] + batch * 6 * kBatch : nullptr;
+            double* __restrict Yn1 = one ? (stream1 ? s.Y6[0] : io.Ynew[0] + batch * 6 * kBatch) : nullptr;
+            auto stressLoop = [&](auto fusedTag) {
+                constexpr bool fused = decltype(fusedTag)::value;
 #pragma omp simd
-            for (int k = 0; k < n; ++k) {
-                const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
-                             F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
-                // cofactor matrix of F
-                const double cf0 = F4 * F8 - F5 * F7, cf1 = F5 * F6 - F3 * F8, cf2 = F3 * F7 - F4 * F6,
-                             cf3 = F2 * F7 - F1 * F8, cf4 = F0 * F8 - F2 * F6, cf5 = F1 * F6 - F0 * F7,
-                             cf6 = F1 * F5 - F2 * F4, cf7 = F2 * F3 - F0 * F5, cf8 = F0 * F4 - F1 * F3;
-                const double c1 = 2 * s.d1[k];
-                const double J = s.J[k];
-                const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
-                // J C^-1 = cof(F)^T cof(F) / J
-                const double JCi0 = (cf0 * cf0 + cf3 * cf3 + cf6 * cf6) * iJ;
-                const double JCi1 = (cf1 * cf1 + cf4 * cf4 + cf7 * cf7) * iJ;
-                const double JCi2 = (cf2 * cf2 + cf5 * cf5 + cf8 * cf8) * iJ;
-                const double JCi3 = (cf0 * cf1 + cf3 * cf4 + cf6 * cf7) * iJ;
-                const double JCi4 = (cf1 * cf2 + cf4 * cf5 + cf7 * cf8) * iJ;
-                const double JCi5 = (cf0 * cf2 + cf3 * cf5 + cf6 * cf8) * iJ;
-                double S0 = c1, S1 = c1, S2 = c1, S3 = 0, S4 = 0, S5 = 0;
-                if constexpr (useI2) {
-                    const double c2 = 2 * s.d2[k], I1 = s.I1[k];
-                    S0 += c2 * (I1 - (F0 * F0 + F3 * F3 + F6 * F6));
-                    S1 += c2 * (I1 - (F1 * F1 + F4 * F4 + F7 * F7));
-                    S2 += c2 * (I1 - (F2 * F2 + F5 * F5 + F8 * F8));
-                    S3 -= c2 * (F0 * F1 + F3 * F4 + F6 * F7);
-                    S4 -= c2 * (F1 * F2 + F4 * F5 + F7 * F8);
-                    S5 -= c2 * (F0 * F2 + F3 * F5 + F6 * F8);
-                }
-                if constexpr (useI4) {
-                    const double c4 = 2 * s.d4[k];
-                    const double a0 = A0x[k], a1 = A0y[k], a2 = A0z[k];
-                    S0 += c4 * a0 * a0; S1 += c4 * a1 * a1; S2 += c4 * a2 * a2;
-                    S3 += c4 * a0 * a1; S4 += c4 * a1 * a2; S5 += c4 * a0 * a2;
-                }
-                if constexpr (useI6) {
-                    const double c6 = 2 * s.d6[k];
-                    const double b0 = B0x[k], b1 = B0y[k], b2 = B0z[k];
-                    S0 += c6 * b0 * b0; S1 += c6 * b1 * b1; S2 += c6 * b2 * b2;
-                    S3 += c6 * b0 * b1; S4 += c6 * b1 * b2; S5 += c6 * b0 * b2;
-                }
-                const double dJi = s.dJi[k], dJv = s.dJv[k];
-                S0 += dJi * JCi0; S1 += dJi * JCi1; S2 += dJi * JCi2;
-                S3 += dJi * JCi3; S4 += dJi * JCi4; S5 += dJi * JCi5;
-                s.Siso[0][k] = S0; s.Siso[1][k] = S1; s.Siso[2][k] = S2;
-                s.Siso[3][k] = S3; s.Siso[4][k] = S4; s.Siso[5][k] = S5;
-                const double V0 = dJv * JCi0, V1 = dJv * JCi1, V2 = dJv * JCi2, V3 = dJv * JCi3, V4 = dJv * JCi4,
-                             V5 = dJv * JCi5;
-                s.Svol[0][k] = V0; s.Svol[1][k] = V1; s.Svol[2][k] = V2;
-                s.Svol[3][k] = V3; s.Svol[4][k] = V4; s.Svol[5][k] = V5;
-                s.S[0][k] = S0 + V0; s.S[1][k] = S1 + V1; s.S[2][k] = S2 + V2;
-                s.S[3][k] = S3 + V3; s.S[4][k] = S4 + V4; s.S[5][k] = S5 + V5;
-            }
-            // viscoelastic relaxation: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1)
-            // (TLED eq. (24), (30)), one short loop per series, term and component over the batch
-            for (size_t v = 0; v < im.visco.size(); ++v) {
-                const ViscoSet& vs = im.visco[v];
-                // (no coefficients yet, i.e. no time step: no relaxation)
-                const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
-                const size_t slot = batch * static_cast<size_t>(vs.terms) * 6 * kBatch;
-                // large states: Y goes to a scratch row, then to memory with streaming stores
-                const bool stream = io.streamY && n == kBatch;
-                for (int t = 0; t < terms; ++t) {
-                    const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
-                    for (int i = 0; i < 6; ++i) {
-                        const size_t row = slot + (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
-                        const double* __restrict Yh = io.Yhist[v] + row;
-                        double* __restrict Yn = stream ? s.Ytmp : io.Ynew[v] + row;
-                        const double* __restrict Ri = s.Siso[i];
-                        const double* __restrict Rv = s.Svol[i];
-                        double* __restrict Si = s.S[i];
-                        if (vs.iso && vs.vol) {
-#pragma omp simd
-                            for (int k = 0; k < n; ++k) {
-                                const double Y = A * (Ri[k] + Rv[k]) + Bc * Yh[k];
-                                Si[k] -= Y;
-                                Yn[k] = Y;
-                            }
-                        } else {
-                            // one part only (apply is isochoric, volumetric or both)
-                            const double* __restrict R = vs.iso ? Ri : Rv;
-#pragma omp simd
-                            for (int k = 0; k < n; ++k) {
-                                const double Y = A * R[k] + Bc * Yh[k];
-                                Si[k] -= Y;
-                                Yn[k] = Y;
-                            }
-                        }
-                        if (stream) simd::streamCopy(io.Ynew[v] + row, s.Ytmp, kBatch);
+                for (int k = 0; k < n; ++k) {
+                    const double F0 = s.F[0][k], F1 = s.F[1][k], F2 = s.F[2][k], F3 = s.F[3][k], F4 = s.F[4][k],
+                                 F5 = s.F[5][k], F6 = s.F[6][k], F7 = s.F[7][k], F8 = s.F[8][k];
+                    // cofactor matrix of F
+                    const double cf0 = F4 * F8 - F5 * F7, cf1 = F5 * F6 - F3 * F8, cf2 = F3 * F7 - F4 * F6,
+                                 cf3 = F2 * F7 - F1 * F8, cf4 = F0 * F8 - F2 * F6, cf5 = F1 * F6 - F0 * F7,
+                                 cf6 = F1 * F5 - F2 * F4, cf7 = F2 * F3 - F0 * F5, cf8 = F0 * F4 - F1 * F3;
+                    const double c1 = 2 * s.d1[k];
+                    const double J = s.J[k];
+                    const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
+                    // J C^-1 = cof(F)^T cof(F) / J
+                    const double JCi0 = (cf0 * cf0 + cf3 * cf3 + cf6 * cf6) * iJ;
+                    const double JCi1 = (cf1 * cf1 + cf4 * cf4 + cf7 * cf7) * iJ;
+                    const double JCi2 = (cf2 * cf2 + cf5 * cf5 + cf8 * cf8) * iJ;
+                    const double JCi3 = (cf0 * cf1 + cf3 * cf4 + cf6 * cf7) * iJ;
+                    const double JCi4 = (cf1 * cf2 + cf4 * cf5 + cf7 * cf8) * iJ;
+                    const double JCi5 = (cf0 * cf2 + cf3 * cf5 + cf6 * cf8) * iJ;
+                    double S0 = c1, S1 = c1, S2 = c1, S3 = 0, S4 = 0, S5 = 0;
+                    if constexpr (useI2) {
+                        const double c2 = 2 * s.d2[k], I1 = s.I1[k];
+                        S0 += c2 * (I1 - (F0 * F0 + F3 * F3 + F6 * F6));
+                        S1 += c2 * (I1 - (F1 * F1 + F4 * F4 + F7 * F7));
+                        S2 += c2 * (I1 - (F2 * F2 + F5 * F5 + F8 * F8));
+                        S3 -= c2 * (F0 * F1 + F3 * F4 + F6 * F7);
+                        S4 -= c2 * (F1 * F2 + F4 * F5 + F7 * F8);
+                        S5 -= c2 * (F0 * F2 + F3 * F5 + F6 * F8);
+                    }
+                    if constexpr (useI4) {
+                        const double c4 = 2 * s.d4[k];
+                        const double a0 = A0x[k], a1 = A0y[k], a2 = A0z[k];
+                        S0 += c4 * a0 * a0; S1 += c4 * a1 * a1; S2 += c4 * a2 * a2;
+                        S3 += c4 * a0 * a1; S4 += c4 * a1 * a2; S5 += c4 * a0 * a2;
+                    }
+                    if constexpr (useI6) {
+                        const double c6 = 2 * s.d6[k];
+                        const double b0 = B0x[k], b1 = B0y[k], b2 = B0z[k];
+                        S0 += c6 * b0 * b0; S1 += c6 * b1 * b1; S2 += c6 * b2 * b2;
+                        S3 += c6 * b0 * b1; S4 += c6 * b1 * b2; S5 += c6 * b0 * b2;
+                    }
+                    const double dJi = s.dJi[k], dJv = s.dJv[k];
+                    S0 += dJi * JCi0; S1 += dJi * JCi1; S2 += dJi * JCi2;
+                    S3 += dJi * JCi3; S4 += dJi * JCi4; S5 += dJi * JCi5;
+                    const double V0 = dJv * JCi0, V1 = dJv * JCi1, V2 = dJv * JCi2, V3 = dJv * JCi3, V4 = dJv * JCi4,
+                                 V5 = dJv * JCi5;
+                    if constexpr (!fused) {
+                        s.Siso[0][k] = S0; s.Siso[1][k] = S1; s.Siso[2][k] = S2;
+                        s.Siso[3][k] = S3; s.Siso[4][k] = S4; s.Siso[5][k] = S5;
+                        s.Svol[0][k] = V0; s.Svol[1][k] = V1; s.Svol[2][k] = V2;
+                        s.Svol[3][k] = V3; s.Svol[4][k] = V4; s.Svol[5][k] = V5;
+                        s.S[0][k] = S0 + V0; s.S[1][k] = S1 + V1; s.S[2][k] = S2 + V2;
+                        s.S[3][k] = S3 + V3; s.S[4][k] = S4 + V4; s.S[5][k] = S5 + V5;
+                    } else {
+                        // one term: Y = A Phi + B Y^(n-1) and S = Siso + Svol - Y (TLED eq. (24), (30)), then P = F S
+                        // (scalars, not small arrays: "omp simd" would move arrays to memory)
+                        const auto relax = [&](double Si, double Sv, int i) {
+                            const double R = wIso * Si + wVol * Sv;  // (weights 0 or 1: no branch in the loop)
+                            const double Y = A1 * R + B1 * Yh1[i * kBatch + k];
+                            Yn1[i * kBatch + k] = Y;
+                            return (Si + Sv) - Y;
+                        };
+                        const double T0 = relax(S0, V0, 0), T1 = relax(S1, V1, 1), T2 = relax(S2, V2, 2),
+                                     T3 = relax(S3, V3, 3), T4 = relax(S4, V4, 4), T5 = relax(S5, V5, 5);
+                        s.P[0][k] = F0 * T0 + F1 * T3 + F2 * T5;
+                        s.P[1][k] = F0 * T3 + F1 * T1 + F2 * T4;
+                        s.P[2][k] = F0 * T5 + F1 * T4 + F2 * T2;
+                        s.P[3][k] = F3 * T0 + F4 * T3 + F5 * T5;
+                        s.P[4][k] = F3 * T3 + F4 * T1 + F5 * T4;
+                        s.P[5][k] = F3 * T5 + F4 * T4 + F5 * T2;
+                        s.P[6][k] = F6 * T0 + F7 * T3 + F8 * T5;
+                        s.P[7][k] = F6 * T3 + F7 * T1 + F8 * T4;
+                        s.P[8][k] = F6 * T5 + F7 * T4 + F8 * T2;
                     }
                 }
-            }
-            // P = F S
+            };
+            if (one) {
+                stressLoop(std::true_type{});
+                if (stream1) simd::streamCopy(io.Ynew[0] + batch * 6 * kBatch, s.Y6[0], 6 * kBatch);
+            } else {
+                stressLoop(std::false_type{});
+                // viscoelastic relaxation: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1)
+                // (TLED eq. (24), (30)), one short loop per series, term and component over the batch
+                for (size_t v = 0; v < im.visco.size(); ++v) {
+                    const ViscoSet& vs = im.visco[v];
+                    // (no coefficients yet, i.e. no time step: no relaxation)
+                    const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+                    const size_t slot = batch * static_cast<size_t>(vs.terms) * 6 * kBatch;
+                    // large states: Y goes to a scratch row, then to memory with streaming stores
+                    const bool stream = io.streamY && n == kBatch;
+                    for (int t = 0; t < terms; ++t) {
+                        const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+                        for (int i = 0; i < 6; ++i) {
+                            const size_t row = slot + (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
+                            const double* __restrict Yh = io.Yhist[v] + row;
+                            double* __restrict Yn = stream ? s.Ytmp : io.Ynew[v] + row;
+                            const double* __restrict Ri = s.Siso[i];
+                            const double* __restrict Rv = s.Svol[i];
+                            double* __restrict Si = s.S[i];
+                            if (vs.iso && vs.vol) {
 #pragma omp simd
-            for (int k = 0; k < n; ++k) {
-                const double S0 = s.S[0][k], S1 = s.S[1][k], S2 = s.S[2][k], S3 = s.S[3][k], S4 = s.S[4][k],
-                             S5 = s.S[5][k];
-                for (int i = 0; i < 3; ++i) {
-                    const double f0 = s.F[3 * i][k], f1 = s.F[3 * i + 1][k], f2 = s.F[3 * i + 2][k];
-                    s.P[3 * i + 0][k] = f0 * S0 + f1 * S3 + f2 * S5;
-                    s.P[3 * i + 1][k] = f0 * S3 + f1 * S1 + f2 * S4;
-                    s.P[3 * i + 2][k] = f0 * S5 + f1 * S4 + f2 * S2;
+                                for (int k = 0; k < n; ++k) {
+                                    const double Y = A * (Ri[k] + Rv[k]) + Bc * Yh[k];
+                                    Si[k] -= Y;
+                                    Yn[k] = Y;
+                                }
+                            } else {
+                                // one part only (apply is isochoric, volumetric or both)
+                                const double* __restrict R = vs.iso ? Ri : Rv;
+#pragma omp simd
+                                for (int k = 0; k < n; ++k) {
+                                    const double Y = A * R[k] + Bc * Yh[k];
+                                    Si[k] -= Y;
+                                    Yn[k] = Y;
+                                }
+                            }
+                            if (stream) simd::streamCopy(io.Ynew[v] + row, s.Ytmp, kBatch);
+                        }
+                    }
+                }
+                // P = F S
+#pragma omp simd
+                for (int k = 0; k < n; ++k) {
+                    const double S0 = s.S[0][k], S1 = s.S[1][k], S2 = s.S[2][k], S3 = s.S[3][k], S4 = s.S[4][k],
+                                 S5 = s.S[5][k];
+                    for (int i = 0; i < 3; ++i) {
+                        const double f0 = s.F[3 * i][k], f1 = s.F[3 * i + 1][k], f2 = s.F[3 * i + 2][k];
+                        s.P[3 * i + 0][k] = f0 * S0 + f1 * S3 + f2 * S5;
+                        s.P[3 * i + 1][k] = f0 * S3 + f1 * S1 + f2 * S4;
+                        s.P[3 * i + 2][k] = f0 * S5 + f1 * S4 + f2 * S2;
+                    }
                 }
             }
         } else if (!needS) {
