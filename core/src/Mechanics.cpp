@@ -22,13 +22,11 @@ void MechanicalGroup::computeForces(double t) {
     // f starts from the body and external forces (one pass), then every force field adds its own
     const Positions& ext = state->externalForce();
     const bool haveExt = ext.size() == n, haveGravity = !gravity.isZero();
-    const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl > kParallelNodes)
-    for (long i = 0; i < nl; ++i) {
+    forEachNode(static_cast<long>(n), [&](long i) {
         Vec3 fi = haveExt ? ext[size_t(i)] : Vec3::Zero();
         if (haveGravity) fi += mass[size_t(i)] * gravity;
         f[size_t(i)] = fi;
-    }
+    });
     for (auto* ff : forceFields) {
         ScopedTimer timer(ff->timer());
         ff->addForce(*state, f, t);
@@ -84,8 +82,12 @@ void MechanicalGroup::checkFinite(double t) {
     const Positions& v = state->v();
     const long n = static_cast<long>(std::min(x.size(), v.size()));
     double probe = 0;
-#pragma omp parallel for schedule(static) reduction(+ : probe) if (n > kParallelNodes)
-    for (long i = 0; i < n; ++i) probe += 0.0 * (x[size_t(i)].sum() + v[size_t(i)].sum());
+    if (n > kParallelNodes) {
+#pragma omp parallel for schedule(static) reduction(+ : probe)
+        for (long i = 0; i < n; ++i) probe += 0.0 * (x[size_t(i)].sum() + v[size_t(i)].sum());
+    } else {
+        for (long i = 0; i < n; ++i) probe += 0.0 * (x[size_t(i)].sum() + v[size_t(i)].sum());
+    }
     if (std::isfinite(probe) && x.size() == v.size()) return;
     const long bad = firstNonFinite(state->x());
     const long badV = firstNonFinite(state->v());

@@ -21,9 +21,7 @@ void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     }
     const double c1 = 1.0 / (1.0 + 0.5 * alpha * dt), c2 = 1.0 - 0.5 * alpha * dt, dt2 = dt * dt;
     const bool haveTwo = h.steps > 0;
-    const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl > core::kParallelNodes)
-    for (long l = 0; l < nl; ++l) {
+    core::forEachNode(static_cast<long>(n), [&](long l) {
         const size_t i = static_cast<size_t>(l);
         const Vec3 xn = x[i];
         const Vec3 next = c1 * (2.0 * xn - c2 * h.prev[i] + dt2 * g.invMass[i] * f[i]);
@@ -33,7 +31,7 @@ void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
                        : Vec3(c1 * ((next - xn) / dt + 0.5 * dt * g.invMass[i] * f[i]));
         h.prev[i] = xn;
         x[i] = next;
-    }
+    });
     ++h.steps;
     g.projectState(t + dt);
 }

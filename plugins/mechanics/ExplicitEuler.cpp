@@ -9,13 +9,11 @@ void ExplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
     const Positions& f = g.state->f();
     const double alpha = m_damping.get();
     const size_t n = x.size();
-    const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl > core::kParallelNodes)
-    for (long l = 0; l < nl; ++l) {
+    core::forEachNode(static_cast<long>(n), [&](long l) {
         const size_t i = static_cast<size_t>(l);
         x[i] += dt * v[i];                                    // HEML eq. (31), with v(t)
         v[i] += dt * (g.invMass[i] * f[i] - alpha * v[i]);
-    }
+    });
     g.projectState(t + dt);
 }
 

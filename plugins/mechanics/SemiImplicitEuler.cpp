@@ -17,13 +17,11 @@ void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
         if (m_halfStepStart.get()) kick = 0.5 * dt;
     }
     const double* invMass = g.invMass.data();
-    const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl > core::kParallelNodes)
-    for (long l = 0; l < nl; ++l) {
+    core::forEachNode(static_cast<long>(n), [&](long l) {
         const size_t i = static_cast<size_t>(l);
         v[i] += kick * (invMass[i] * f[i] - alpha * v[i]);  // HEML eq. (32), first line
         x[i] += dt * v[i];                                  // HEML eq. (32), second line
-    }
+    });
     g.projectState(t + dt);
 }
 
