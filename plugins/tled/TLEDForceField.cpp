@@ -1213,7 +1213,8 @@ void TLEDForceField::init() {
     }
     // states beyond a quarter of a typical L3 (32 MiB here) are written with streaming stores: they
     // are read once per step and would only evict the element data (docs/performance.md)
-    im.streamStates = stateBytes > (size_t(8) << 20);
+    const std::string& stream = m_streamStates.get();
+    im.streamStates = stream == "on" || (stream == "auto" && stateBytes > (size_t(8) << 20));
     const double dt = node()->context().dt;
     if (dt > 0) dtChanged(dt);
 }

@@ -124,6 +124,10 @@ public:
     core::Param<double> m_hourglass{this, core::ParamSpec("hourglassStiffness").min(0).help(
         "dimensionless hourglass control coefficient kappa_HG of the reduced-integration hexahedra "
         "(Flanagan-Belytschko / Joldes et al. 2008 form, see the class documentation); 0 disables it"), 0.075};
+    core::Param<std::string> m_streamStates{this, core::ParamSpec("streamStates").choices({"auto", "on", "off"}).help(
+        "performance: write the viscous state variables with streaming (cache-bypassing) stores; auto: when "
+        "they take more than 8 MiB, where they no longer fit the caches beside the element data. Results are "
+        "the same either way"), "auto"};
 
     struct Impl;
 
