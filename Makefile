@@ -31,7 +31,9 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
-	$(BUILD_DIR)/bin/fascia-bench --suite
+	$(BUILD_DIR)/bin/fascia-bench --suite heml
+	$(BUILD_DIR)/bin/fascia-bench --suite scaling --repeat 7
+	$(BUILD_DIR)/bin/fascia-bench --suite tled --repeat 9
 
 clean:
 	rm -rf $(BUILD_DIR)
