@@ -12,6 +12,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,8 @@ void VTKExporter::init() {
         warn("writes the cells of '" + m_forceFields.front()->name() + "' only; " + std::to_string(m_forceFields.size() - 1) +
              " other element force field(s) on the same state are not exported");
     m_written.clear();
+    m_listed = 0;
+    m_lastCollection = 0;
 }
 
 void VTKExporter::observe(double t, long step) {
@@ -156,6 +159,10 @@ void VTKExporter::writeStep(double t, long step) {
     writer->SetInputData(grid);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
+    const std::string& compression = m_compression.get();
+    if (compression == "lz4") writer->SetCompressorTypeToLZ4();
+    else if (compression == "zlib") writer->SetCompressorTypeToZLib();
+    else writer->SetCompressorTypeToNone();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
         throw core::Error(core::ErrorKind::Internal, loc(), className() + " '" + name() + "': cannot write '" + target.string() +
@@ -164,7 +171,15 @@ void VTKExporter::writeStep(double t, long step) {
     fs::rename(tmp, target, ec);
     if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
     m_written.emplace_back(t, (fs::path(m_base).parent_path() / fileName).string());
-    writeCollection();
+    const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    if (m_written.size() <= 100 || now - m_lastCollection >= 1.0) {
+        writeCollection();
+        m_lastCollection = now;
+    }
+}
+
+void VTKExporter::cleanup() {
+    if (m_st && m_written.size() != m_listed) writeCollection();
 }
 
 void VTKExporter::writeCollection() {
@@ -175,6 +190,7 @@ void VTKExporter::writeCollection() {
         s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << fs::path(f).filename().string() << "\"/>\n";
     s << "  </Collection>\n</VTKFile>\n";
     writeFileAtomically((fs::path(node()->context().outputDir) / (m_base + ".pvd")).string(), s.str());
+    m_listed = m_written.size();
 }
 
 } // namespace fascia::meshio

@@ -8,15 +8,20 @@ namespace fascia::meshio {
 /// Writes a ParaView time series: <outputDir>/<filename>.pvd plus one .vtu per output step, with
 /// point data displacement, velocity and force, and the cell data the force fields in its context
 /// provide (J, stresses ...). Each file is written under a temporary name and renamed, so a run
-/// killed at any moment leaves only complete files (and the .pvd lists only those).
+/// killed at any moment leaves only complete files (and the .pvd lists only those). The .pvd is
+/// rewritten after every file while the series is short; past 100 files at most once a second of
+/// wall time (a full rewrite per file would grow quadratically), and always at the end of the run.
 class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
     void observe(double t, long step) override;
-    void cleanup() override {}
+    void cleanup() override;
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("base name of the files, relative to the output folder (default: the component's name)")};
     core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write every N steps (the initial state is always written)"), 1};
+    core::Param<std::string> m_compression{this, core::ParamSpec("compression").choices({"lz4", "zlib", "none"}).help(
+        "compression of the data in the .vtu files: lz4 (fast; ParaView 5.5 and later), zlib (smaller, about 10 "
+        "times slower to write) or none"), "lz4"};
     core::Param<bool> m_cellData{this, core::ParamSpec("cellData").help("write the force fields' per-element data (J, stresses)"), true};
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to write (default: the one in the context)")};
 
@@ -27,6 +32,8 @@ private:
     std::vector<core::BaseForceField*> m_forceFields;
     std::vector<std::pair<double, std::string>> m_written;  ///< (time, file name) in the .pvd
     std::string m_base;
+    size_t m_listed = 0;  ///< files listed in the .pvd on disk
+    double m_lastCollection = 0;  ///< wall time (s) of its last rewrite
 };
 
 /// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).

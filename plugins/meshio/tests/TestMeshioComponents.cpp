@@ -151,9 +151,12 @@ TEST_CASE("MeshLoader reads, scales and moves a mesh; a bad file is located in t
 }
 
 TEST_CASE("VTKExporter files open in VTK's own reader and the values round-trip", "[VTKExporter]") {
-    auto dir = freshDir("vtk");
+    const std::string compression = GENERATE(as<std::string>{}, "lz4", "zlib", "none");
+    CAPTURE(compression);
+    auto dir = freshDir("vtk-" + compression);
     auto sim = Simulation::fromString(cube("tetrahedra6", "  <FixedConstraint group=\"zmin\"/>\n"
-                                                          "  <VTKExporter name=\"out\" every=\"2\"/>\n"),
+                                                          "  <VTKExporter name=\"out\" every=\"2\" compression=\"" +
+                                                              compression + "\"/>\n"),
                                       "scene.xml", ".", {dir.string(), 0});
     sim->run(4);
     sim->finish();
@@ -184,6 +187,27 @@ TEST_CASE("VTKExporter files open in VTK's own reader and the values round-trip"
             REQUIRE(vv[a] == st.v()[i][a]);
         }
     }
+}
+
+TEST_CASE("VTKExporter lists every file in the .pvd at the end of a long series", "[VTKExporter]") {
+    // past 100 files the .pvd is rewritten at most once a second, and completed when the run ends
+    auto dir = freshDir("long");
+    auto sim = Simulation::fromString(cube("tetrahedra6", "  <FixedConstraint group=\"zmin\"/>\n  <VTKExporter name=\"out\"/>\n",
+                                           "2 2 2"),
+                                      "scene.xml", ".", {dir.string(), 0});
+    sim->run(150);
+    auto count = [&] {
+        const std::string pvd = slurp(dir / "out.pvd");
+        size_t n = 0;
+        for (size_t p = pvd.find("<DataSet"); p != std::string::npos; p = pvd.find("<DataSet", p + 1)) ++n;
+        return n;
+    };
+    const size_t during = count();
+    CHECK(during >= 100);
+    CHECK(during <= 151);
+    sim->finish();
+    CHECK(count() == 151);
+    CHECK_THAT(slurp(dir / "out.pvd"), Contains("file=\"out_000150.vtu\""));
 }
 
 TEST_CASE("a run killed mid-way leaves only complete exporter files", "[VTKExporter]") {
