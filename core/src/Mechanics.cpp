@@ -35,7 +35,8 @@ void MechanicalGroup::computeForces(double t) {
     // one reaction per node, whatever the number of constraints acting on it: minus what the
     // constraints removed, recorded at the constrained nodes only (a node listed twice is harmless)
     Positions& r = state->reaction();
-    for (int i : reactionNodes) r[size_t(i)] = Vec3::Zero();  // (the set may change between steps)
+    for (int i : reactionNodes)  // (the set may change between steps, the state may have shrunk)
+        if (size_t(i) < r.size()) r[size_t(i)] = Vec3::Zero();
     reactionNodes.clear();
     for (auto* c : constraints) {
         const IndexList& nodes = c->constrainedNodes();
@@ -77,7 +78,7 @@ std::string vecText(const Vec3& v) {
 
 void MechanicalGroup::checkFinite(double t) {
     // fast test: one pass over x and v (0 * a non-finite value is NaN, 0 * a finite one is 0); the
-    // slow one below only when it fails (it also clears a false alarm from a finite overflow)
+    // slow one below only when it fails (and returns when the sum of finite values overflowed)
     const Positions& x = state->x();
     const Positions& v = state->v();
     const long n = static_cast<long>(std::min(x.size(), v.size()));

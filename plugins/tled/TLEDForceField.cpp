@@ -1253,7 +1253,8 @@ void runBlock(const Impl& im, const Block& b, const KernelIO& io) {
 }
 
 /// u = x - X for the nodes the elements use, 4 per node (the 4th is padding). An orphaned "omp for":
-/// shared by the threads of an enclosing parallel region, serial outside one.
+/// shared by the threads of the enclosing parallel region (every caller opens its own, so a caller
+/// inside a user's parallel region still gets all of u).
 void displacements(const core::BaseMechanicalState& state, std::vector<double>& u, size_t nodes) {
     const Vec3* x = state.x().data();
     const Vec3* X = state.x0().data();
@@ -1335,6 +1336,7 @@ double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     if (state.size() < im.nodeCount) return std::numeric_limits<double>::quiet_NaN();
     std::vector<double> e(m_blocks.size(), 0.0);
     std::vector<double> u(4 * im.nodeCount);
+#pragma omp parallel if (im.nodeCount > 65536)
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
     const bool hasVisco = !im.visco.empty();
@@ -1360,6 +1362,7 @@ void TLEDForceField::stresses(const core::BaseMechanicalState& state, double t, 
     S.assign(6 * elementCount(), 0.0);
     if (state.size() < im.nodeCount) return;
     std::vector<double> u(4 * im.nodeCount);
+#pragma omp parallel if (im.nodeCount > 65536)
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
 #pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
@@ -1380,6 +1383,7 @@ void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vecto
     const double t = node() ? node()->context().time : im.curTime;
     std::vector<double> S(6 * n, 0.0), F(9 * n, 0.0);
     std::vector<double> u(4 * im.nodeCount);
+#pragma omp parallel if (im.nodeCount > 65536)
     displacements(state, u, im.nodeCount);
     const long nb = static_cast<long>(m_blocks.size());
 #pragma omp parallel for schedule(dynamic, 1) if (nb > 1)

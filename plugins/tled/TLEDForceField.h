@@ -26,6 +26,8 @@
 ///   kappa_HG = hourglassStiffness, lambda + 2 mu = bulk + 4/3 shear modulus of the element's material.
 ///   It is the gradient of the energy K/2 sum_k |sum_b gamma_kb u_b|^2 (included in potentialEnergy),
 ///   vanishes for rigid motions and linear displacement fields, and resists only the hourglass modes.
+///   The loop keeps c_k = sum_a h_ka X_a (12 numbers) instead of gamma (32): sum_b gamma_kb u_b =
+///   sum_b h_kb u_b - (F - I) c_k, and the force folds into the element's P dN/dX term.
 ///
 /// Materials: `material` (default: the material in the context), or per mesh group with
 /// groupMaterials="1 @soft 2 @stiff" (group tag or name, then a material path). Fibre directions a0
@@ -43,8 +45,10 @@
 /// Viscoelasticity (TLED sections 3-4): a ViscoelasticProny in the same node relaxes the isochoric
 /// part (everything but the pure-J term), the volumetric (pure-J) part, or both, of S:
 ///   S^n = Phi^n - sum_i Y_i^n,  Y_i^n = A_i Phi^n + B_i Y_i^(n-1)          TLED eq. (24), (30)
-/// with one 6-component state per element and Prony term (structure of arrays: one array per term and
-/// stress component), updated in the vectorised element loop; A_i, B_i are recomputed in dtChanged().
+/// with one 6-component state per element and Prony term (stored batch by batch, 32 elements per
+/// row, so that a step reads and writes one contiguous stream; large states are written with
+/// streaming stores, see streamStates), updated in the vectorised element loop; A_i, B_i are
+/// recomputed in dtChanged().
 /// Two ViscoelasticProny components (one isochoric, one volumetric) may be combined. The history
 /// advances when addForce() is called at a new time t (repeated calls at the same t recompute the
 /// same step), i.e. once per step for the explicit integrators. potentialEnergy() is the elastic
@@ -140,7 +144,7 @@ private:
         int group = 0;     ///< index into Impl::groups
         size_t begin = 0, end = 0;  ///< internal element range of its kind
         int nodeLo = 0, nodeHi = -1;  ///< node range its elements touch
-        size_t bufOffset = 0;         ///< 3 * offset into the block buffers
+        size_t bufOffset = 0;         ///< offset of its node buffer in Impl::buf (doubles, 4 per node)
         size_t batchBase = 0;         ///< index of its first element batch among all blocks (viscous states)
     };
     std::vector<Block> m_blocks;

@@ -470,9 +470,10 @@ TEST_CASE("TLEDForceField viscous paths agree: one term relaxed in the stress lo
     // two terms with one tau relax like one term with the summed alpha (TLED eq. (30): A adds up, B is
     // shared), so the general path (two terms) must give the forces of the one-term path; streaming
     // the states changes only how they are stored
-    Positions p = gridPoints(4, 4, 6, 0.01);
-    const Tetrahedra t = gridTets(4, 4, 6, 0, 4);
-    const Hexahedra h = gridHexes(4, 4, 6, 4, 6);
+    // 270 tetrahedra and 18 hexahedra: full batches of 32 (streamed when on) and a partial one each
+    Positions p = gridPoints(3, 3, 7, 0.01);
+    const Tetrahedra t = gridTets(3, 3, 7, 0, 5);
+    const Hexahedra h = gridHexes(3, 3, 7, 5, 7);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-2e-4, 2e-4);
     std::vector<Positions> xs;
@@ -519,4 +520,86 @@ TEST_CASE("TLEDForceField viscous paths agree: one term relaxed in the stress lo
         sDiff = std::max(sDiff, std::abs(two.second[i] - one.second[i]));
     }
     CHECK(sDiff < 1e-12 * sScale);
+}
+
+TEST_CASE("TLEDForceField viscous states stay with their elements across blocks and batches",
+          "[TLEDForceField][viscoelastic]") {
+    // a non-uniform deformation held from t = 0 on 6 blocks of tetrahedra and 2 of hexahedra (full and
+    // partial batches): with apply="both" every element's S must be (1 - y_n) Phi_e, y_n = A + B y_(n-1)
+    // (TLED eq. (30)), Phi_e its own elastic stress (from the same force field without relaxation);
+    // a state read or written in another element's slot would mix two different Phi
+    const Positions p = gridPoints(12, 12, 16, 0.01);
+    Positions x = p;
+    for (auto& q : x) q += 0.004 * Vec3(std::sin(40 * q[1]), std::sin(30 * q[2]), std::sin(50 * q[0]));
+    auto make = [&](Bench& b, bool visco) {
+        b.material("NeoHookean", {{"mu", "1000"}, {"kappa", "20000"}});
+        if (visco) b.prony("0.5", "0.02", "both");
+        b.forceField(gridTets(12, 12, 16, 0, 12), gridHexes(12, 12, 16, 12, 16)).init();
+        b.state->x() = x;
+    };
+    Bench b(p), elastic(p);
+    make(b, true);
+    make(elastic, false);
+    REQUIRE(b.ff->blockCount() == 8);
+    const double dt = 0.01;
+    b.ff->dtChanged(dt);
+    std::vector<double> Phi;
+    elastic.ff->stresses(*elastic.state, 0, Phi);
+    double scale = 0;
+    for (double v : Phi) scale = std::max(scale, std::abs(v));
+    const double A = dt * 0.5 / (dt + 0.02), B = 0.02 / (dt + 0.02);
+    double y = 0;
+    for (int n = 0; n < 4; ++n) {
+        b.forces(n * dt);
+        y = A + B * y;
+        std::vector<double> S;
+        b.ff->stresses(*b.state, n * dt, S);
+        REQUIRE(S.size() == Phi.size());
+        double worst = 0;
+        for (size_t i = 0; i < S.size(); ++i) worst = std::max(worst, std::abs(S[i] - (1 - y) * Phi[i]));
+        CHECK(worst < 1e-11 * scale);
+    }
+}
+
+TEST_CASE("TLEDForceField fibre directions per group and per element give the same forces",
+          "[TLEDForceField]") {
+    // two groups of tetrahedra with different material directions: the vectorised loop reads them
+    // per group (no array) or per element (a cell array holding the same directions)
+    fascia::MeshData mesh;
+    mesh.points = gridPoints(6, 6, 8, 0.01);
+    mesh.tetrahedra = gridTets(6, 6, 8);
+    const size_t nt = mesh.tetrahedra.size();
+    mesh.tetrahedronGroup.resize(nt);
+    std::vector<double> fibres;
+    for (size_t e = 0; e < nt; ++e) {
+        const bool upper = e >= nt / 2;
+        mesh.tetrahedronGroup[e] = upper ? 2 : 1;
+        if (upper) fibres.insert(fibres.end(), {1.0, 0.0, 1.0});
+        else fibres.insert(fibres.end(), {0.0, 1.0, 0.0});
+    }
+    mesh.cellArrays["fibres"] = fibres;
+    Positions x = mesh.points;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-3e-4, 3e-4);
+    for (auto& q : x) q = 1.03 * q + Vec3(u(rng), u(rng), u(rng));
+    auto run = [&](bool array) {
+        Bench b(mesh.points);
+        b.material("TransverselyIsotropic", {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "4000"}, {"direction", "0 1 0"}}, "m1");
+        b.material("TransverselyIsotropic", {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "4000"}, {"direction", "1 0 1"}}, "m2");
+        auto& ff = b.forceField({}, {});
+        ff.m_mesh.set(mesh);
+        setParams(ff, {{"groupMaterials", "1 @m1 2 @m2"}});
+        if (array) setParams(ff, {{"fibreArray", "fibres"}});
+        ff.init();
+        b.state->x() = x;
+        return b.forces();
+    };
+    const Positions a = run(true), g = run(false);
+    double scale = 0, diff = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        scale = std::max(scale, a[i].norm());
+        diff = std::max(diff, (a[i] - g[i]).norm());
+    }
+    REQUIRE(scale > 0);
+    CHECK(diff <= 1e-14 * scale);
 }

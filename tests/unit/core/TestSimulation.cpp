@@ -144,6 +144,29 @@ TEST_CASE("A NaN force is a simulation error naming the step and the force field
     CHECK(sim->stepCount() == 2);  // the failed step does not count
 }
 
+TEST_CASE("A NaN on a large state is caught by the parallel finite check", "[Simulation][MechanicalGroup]") {
+    // above kParallelNodes nodes the finite check runs on the OpenMP threads
+    const int n = int(kParallelNodes) + 1000;
+    std::string positions;
+    for (int i = 0; i < n; ++i) positions += std::to_string(i) + " 0 0 ";
+    const std::string xml = R"(<Node name="root" dt="0.01">
+  <Node name="body">
+    <TestEuler name="euler"/>
+    <TestState name="state" position=")" + positions + R"("/>
+    <TestMass name="mass" mass="2"/>
+    <TestNaN name="nan" nanAtStep="2" nanNode=")" + std::to_string(n - 7) + R"("/>
+  </Node>
+</Node>)";
+    auto sim = scene(xml);
+    sim->run(1);
+    auto e = errorOf([&] { sim->run(3); });
+    REQUIRE(e);
+    INFO(e->what());
+    CHECK(e->kind() == ErrorKind::Simulation);
+    CHECK_THAT(e->message(), StartsWith("[/root/body/nan] step 2: "));
+    CHECK_THAT(e->message(), Contains("node " + std::to_string(n - 7)));
+}
+
 TEST_CASE("Components without a state or an integrator are warned about, not fatal", "[Simulation]") {
     auto sim = scene(R"(<Node name="root" dt="0.1">
   <TestNaN name="lonely"/>

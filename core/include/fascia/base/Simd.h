@@ -108,15 +108,10 @@ inline void streamCopy(double* dst, const double* src, size_t n) {
     for (size_t i = 0; i < n; ++i) dst[i] = src[i];
 #endif
 }
-/// Prefetches [p, p + bytes) into the cache (a hint; no effect without SSE).
+/// Prefetches [p, p + bytes) into the cache (a hint).
 inline void prefetch(const void* p, size_t bytes) {
-#if defined(__SSE__)
     const char* c = static_cast<const char*>(p);
-    for (size_t i = 0; i < bytes; i += 64) _mm_prefetch(c + i, _MM_HINT_T0);
-#else
-    (void)p;
-    (void)bytes;
-#endif
+    for (size_t i = 0; i < bytes; i += 64) __builtin_prefetch(c + i, 0, 3);
 }
 inline void streamFence() {
 #if defined(__AVX__)
