@@ -2,7 +2,7 @@
 /// Helpers shared by the element loops of the force fields (HEML, TLED and plugins): 64-byte
 /// aligned storage, and the move of node data between node rows (4 doubles per node, the 4th is
 /// padding) and structure-of-arrays batches of elements with in-register transposes
-/// (../shared/PERFORMANCE.md lesson 2: hardware gathers and masked scatters are slower).
+/// (measured here: hardware gathers and masked scatters are slower, see docs/performance.md).
 #include <cstddef>
 #include <cstdlib>
 #include <new>
