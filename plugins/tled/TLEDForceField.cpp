@@ -1269,6 +1269,29 @@ void displacements(const core::BaseMechanicalState& state, std::vector<double>& 
     }
 }
 
+/// Runs every block on the state's current displacements; setup(io, block index) chooses the outputs
+/// (energy, S, F) and the history. For the outputs other than the forces of a step.
+template <class Block, class Setup>
+void runBlocksOn(const Impl& im, const std::vector<Block>& blocks, const core::BaseMechanicalState& state, Setup&& setup) {
+    std::vector<double> u(4 * im.nodeCount);
+#pragma omp parallel if (im.nodeCount > 65536)
+    displacements(state, u, im.nodeCount);
+    const long nb = static_cast<long>(blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
+    for (long bi = 0; bi < nb; ++bi) {
+        KernelIO io;
+        io.u = u.data();
+        setup(io, static_cast<size_t>(bi));
+        runBlock(im, blocks[static_cast<size_t>(bi)], io);
+    }
+}
+
+/// The viscous history a stress output at time t reads: the states of the last evaluation when t is
+/// a later time than it, else the committed ones.
+const double* historyAt(const Impl& im, size_t v, double t) {
+    return (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
+}
+
 } // namespace
 
 void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
@@ -1335,23 +1358,12 @@ double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     const Impl& im = *m_impl;
     if (state.size() < im.nodeCount) return std::numeric_limits<double>::quiet_NaN();
     std::vector<double> e(m_blocks.size(), 0.0);
-    std::vector<double> u(4 * im.nodeCount);
-#pragma omp parallel if (im.nodeCount > 65536)
-    displacements(state, u, im.nodeCount);
-    const long nb = static_cast<long>(m_blocks.size());
-    const bool hasVisco = !im.visco.empty();
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-    for (long bi = 0; bi < nb; ++bi) {
-        KernelIO io;
-        io.u = u.data();
-        io.energy = &e[static_cast<size_t>(bi)];
-        if (hasVisco) {
-            // the energy is the elastic one (the kernel skips the viscous stresses without forces or
-            // stress output); the committed history, should it read one
-            for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = im.visco[v].Yprev.data();
-        }
-        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
-    }
+    runBlocksOn(im, m_blocks, state, [&](KernelIO& io, size_t bi) {
+        io.energy = &e[bi];
+        // the energy is the elastic one (the kernel skips the viscous stresses without forces or
+        // stress output); the committed history, should it read one
+        for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = im.visco[v].Yprev.data();
+    });
     double sum = 0;
     for (double v : e) sum += v;
     return sum;
@@ -1361,19 +1373,10 @@ void TLEDForceField::stresses(const core::BaseMechanicalState& state, double t, 
     const Impl& im = *m_impl;
     S.assign(6 * elementCount(), 0.0);
     if (state.size() < im.nodeCount) return;
-    std::vector<double> u(4 * im.nodeCount);
-#pragma omp parallel if (im.nodeCount > 65536)
-    displacements(state, u, im.nodeCount);
-    const long nb = static_cast<long>(m_blocks.size());
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-    for (long bi = 0; bi < nb; ++bi) {
-        KernelIO io;
-        io.u = u.data();
+    runBlocksOn(im, m_blocks, state, [&](KernelIO& io, size_t) {
         io.S = S.data();
-        for (size_t v = 0; v < im.visco.size(); ++v)
-            io.Yhist[v] = (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
-        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
-    }
+        for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = historyAt(im, v, t);
+    });
 }
 
 void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
@@ -1382,20 +1385,11 @@ void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vecto
     if (state.size() < im.nodeCount) return;
     const double t = node() ? node()->context().time : im.curTime;
     std::vector<double> S(6 * n, 0.0), F(9 * n, 0.0);
-    std::vector<double> u(4 * im.nodeCount);
-#pragma omp parallel if (im.nodeCount > 65536)
-    displacements(state, u, im.nodeCount);
-    const long nb = static_cast<long>(m_blocks.size());
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-    for (long bi = 0; bi < nb; ++bi) {
-        KernelIO io;
-        io.u = u.data();
+    runBlocksOn(im, m_blocks, state, [&](KernelIO& io, size_t) {
         io.S = S.data();
         io.F = F.data();
-        for (size_t v = 0; v < im.visco.size(); ++v)
-            io.Yhist[v] = (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
-        runBlock(im, m_blocks[static_cast<size_t>(bi)], io);
-    }
+        for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = historyAt(im, v, t);
+    });
     core::CellField fS{"S", 6, "Pa", S};
     core::CellField fSig{"cauchyStress", 6, "Pa", std::vector<double>(6 * n)};
     core::CellField fVM{"vonMises", 1, "Pa", std::vector<double>(n)};
