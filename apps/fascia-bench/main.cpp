@@ -57,7 +57,10 @@ step_time_vs_first and per_element_vs_first are medians over the rounds of the r
 case of the line, robust to a noisy machine.
 
 Each case prints one JSON object: forcefield, material, mesh, elements, nodes, threads, precision,
-steps, ms_per_step (median), ms_min, ms_max, ns_per_element_step.
+steps, ms_per_step (median), ms_min, ms_max, ns_per_element_step, and forcefield_ns_per_element:
+the force field's addForce alone, timed in the same rounds (its element loop and its own node
+passes, without the integrator, the other force terms and the checks of a step), with
+forcefield_per_element_vs_first beside the step ratios.
 )";
 
 struct Case {
@@ -134,41 +137,71 @@ void runCases(const std::vector<Case>& cs) {
     const size_t nc = cs.size();
     std::vector<std::unique_ptr<Simulation>> sims;
     std::vector<size_t> elements(nc), nodes(nc);
+    std::vector<BaseForceField*> ffs(nc);
     for (size_t i = 0; i < nc; ++i) {
         sims.push_back(build(cs[i], cs[i].threads));
         auto* ff = dynamic_cast<BaseForceField*>(sims[i]->find("ff"));
+        ffs[i] = ff;
         elements[i] = ff ? ff->elementCount() : 0;
         nodes[i] = sims[i]->state("state").size();
         sims[i]->run(5);  // warm-up
     }
-    std::vector<std::vector<double>> ms(nc), ratio(nc);
-    std::vector<std::vector<double>> rounds(cs[0].repeat, std::vector<double>(nc));
+    // full steps (ms), and the force field's addForce alone (ms per call): the element loop with
+    // its own node passes, without the integrator, the other force terms and the checks
+    std::vector<std::vector<double>> ms(nc), ratio(nc), msFF(nc), ratioFF(nc);
+    std::vector<std::vector<double>> rounds(cs[0].repeat, std::vector<double>(nc)), roundsFF = rounds;
+    std::vector<fascia::Positions> fScratch(nc);
+    for (size_t i = 0; i < nc; ++i) fScratch[i].assign(nodes[i], Vec3::Zero());
+    const auto since = [](std::chrono::steady_clock::time_point t0) {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    };
     for (int r = 0; r < cs[0].repeat; ++r)
         for (size_t j = 0; j < nc; ++j) {
             const size_t i = r % 2 == 0 ? j : nc - 1 - j;  // alternate the order: no case always runs first
             omp_set_num_threads(cs[i].threads);
-            const auto t0 = std::chrono::steady_clock::now();
+            auto t0 = std::chrono::steady_clock::now();
             sims[i]->run(cs[i].steps);
-            ms[i].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
-                            cs[i].steps);
+            ms[i].push_back(since(t0) / cs[i].steps);
             rounds[size_t(r)][i] = ms[i].back();
+            if (!ffs[i]) continue;
+            // (at the simulation's time: a viscous force field recomputes the same step each call)
+            auto& st = sims[i]->state("state");
+            t0 = std::chrono::steady_clock::now();
+            for (int k = 0; k < cs[i].steps; ++k) ffs[i]->addForce(st, fScratch[i], sims[i]->time());
+            msFF[i].push_back(since(t0) / cs[i].steps);
+            roundsFF[size_t(r)][i] = msFF[i].back();
         }
-    for (auto& t : rounds)
-        for (size_t i = 1; i < nc; ++i) ratio[i].push_back(t[i] / t[0]);
+    for (size_t r = 0; r < rounds.size(); ++r)
+        for (size_t i = 1; i < nc; ++i) {
+            ratio[i].push_back(rounds[r][i] / rounds[r][0]);
+            if (roundsFF[r][0] > 0) ratioFF[i].push_back(roundsFF[r][i] / roundsFF[r][0]);
+        }
+    const auto median = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
     for (size_t i = 0; i < nc; ++i) {
         const Case& c = cs[i];
         std::vector<double> t = ms[i];
         std::sort(t.begin(), t.end());
         const double med = t[t.size() / 2];
         std::string extra;
+        char buf[240];
+        const double perElement = double(elements[0]) / double(std::max<size_t>(1, elements[i]));
         if (i > 0) {
-            std::sort(ratio[i].begin(), ratio[i].end());
-            char buf[160];
             // per element: the step-time ratio scaled by the element counts
-            const double rq = ratio[i][ratio[i].size() / 2];
-            std::snprintf(buf, sizeof buf, ", \"step_time_vs_first\": %.4f, \"per_element_vs_first\": %.4f", rq,
-                          rq * double(elements[0]) / double(std::max<size_t>(1, elements[i])));
+            const double rq = median(ratio[i]);
+            std::snprintf(buf, sizeof buf, ", \"step_time_vs_first\": %.4f, \"per_element_vs_first\": %.4f", rq, rq * perElement);
             extra = buf;
+        }
+        if (elements[i] && !msFF[i].empty()) {
+            std::snprintf(buf, sizeof buf, ", \"forcefield_ns_per_element\": %.3f", median(msFF[i]) * 1e6 / double(elements[i]));
+            extra += buf;
+            if (i > 0 && !msFF[0].empty()) {
+                std::snprintf(buf, sizeof buf, ", \"forcefield_per_element_vs_first\": %.4f", median(ratioFF[i]) * perElement);
+                extra += buf;
+            }
         }
         if (c.determinism) {
             auto a = build(c, 1), b = build(c, c.threads);

@@ -38,35 +38,61 @@ std::string fmt(double v) {
     return s.str();
 }
 
-/// AoS (m values per element) -> SoA (row c - first holds component c of every element), rows first..m-1.
-std::vector<double> transposeRows(const std::vector<double>& aos, size_t m, size_t first = 0) {
-    const size_t n = aos.size() / m;
-    std::vector<double> out((m - first) * n);
-    for (size_t e = 0; e < n; ++e)
-        for (size_t c = first; c < m; ++c) out[(c - first) * n + e] = aos[e * m + c];
-    return out;
-}
-
 /// Precomputed data of one element kind, in internal order (grouped by material). Filled element by
-/// element (AoS), then turned into structure-of-arrays by finish(): row c of an array holds
-/// component c of every element (index c * size() + e).
+/// element (AoS), then packed by finish() batch by batch: the batch in slot m (the blocks' batches
+/// in order, see Block::batchBase and batchOffset) holds its rows one after the other, row r at
+/// pack[(m rows + r) kBatch + k] for element k of the batch. A batch's data is then one contiguous
+/// stream at constant offsets from one pointer: with a row of all elements per component (the
+/// earlier layout) the element loop needed one pointer per row (36 for a hexahedron) and spilled
+/// them to the stack (docs/performance.md).
 template <int NN>
 struct ElementSet {
+    /// rows of the pack: dN_a/dX (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3)), then
+    /// for hexahedra the hourglass c_q, then the fibre directions a0 and b0 when given per element
+    static constexpr int kDnRows = NN == 4 ? 9 : 24;
+    static constexpr int kHgRow = kDnRows;                         ///< hexahedra: c_q, rows kHgRow + 3q + i
+    static constexpr int kFibreRow = NN == 8 ? kDnRows + 12 : kDnRows;  ///< a0 x y z, then b0 x y z
+
     std::vector<int> nodes;     ///< NN per element (AoS)
-    std::vector<double> dN;     ///< dN_a/dX: rows 3a + j (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3))
+    std::vector<double> dN;     ///< AoS dN_a/dX, 3 per node (emptied by finish())
     std::vector<double> vol;    ///< rest volume (m^3)
-    std::vector<double> a0, b0; ///< fibre directions per element, rows x y z (empty unless a fibre array gives them)
+    std::vector<double> a0, b0; ///< AoS fibre directions per element (empty unless a fibre array gives them; emptied by finish())
     std::vector<int> orig;      ///< index in the input list of its kind
     std::vector<double> length; ///< characteristic length L_e (m)
-    std::vector<double> hgC;    ///< hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, rows 3q + i
+    std::vector<double> hgC;    ///< AoS hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, 3q + i (emptied by finish())
     std::vector<double> hgK;    ///< hexahedra: hourglass stiffness K (N/m)
+    simd::DVec pack;            ///< the rows above, batch by batch
+    int rows = 0;               ///< rows per batch in pack
+    size_t batchOffset = 0;     ///< Block::batchBase of the first batch of this kind
     size_t size() const { return vol.size(); }
-    void finish() {
+    /// the pack of the batch starting at element e0 of block b
+    template <class Block> const double* batchData(const Block& b, size_t e0) const {
+        return pack.data() + (b.batchBase - batchOffset + (e0 - b.begin) / kBatch) * static_cast<size_t>(rows) * kBatch;
+    }
+    /// packs the AoS arrays; batches: first element of every batch, in slot order
+    void finish(const std::vector<size_t>& batches) {
         if (size() == 0) return;
-        dN = NN == 4 ? transposeRows(dN, 12, 3) : transposeRows(dN, 24);
-        if (!a0.empty()) a0 = transposeRows(a0, 3);
-        if (!b0.empty()) b0 = transposeRows(b0, 3);
-        if (!hgC.empty()) hgC = transposeRows(hgC, 12);
+        const bool fibres = !a0.empty() || !b0.empty();
+        rows = kFibreRow + (fibres ? 6 : 0);
+        pack.assign(batches.size() * static_cast<size_t>(rows) * kBatch, 0.0);
+        for (size_t m = 0; m < batches.size(); ++m) {
+            double* P = pack.data() + m * static_cast<size_t>(rows) * kBatch;
+            const size_t n = std::min<size_t>(kBatch, size() - batches[m]);
+            for (size_t k = 0; k < n; ++k) {
+                const size_t e = batches[m] + k;
+                for (int r = 0; r < kDnRows; ++r) P[r * kBatch + k] = dN[e * 3 * NN + (NN == 4 ? 3 : 0) + static_cast<size_t>(r)];
+                if constexpr (NN == 8)
+                    for (int r = 0; r < 12; ++r) P[(kHgRow + r) * kBatch + k] = hgC[e * 12 + static_cast<size_t>(r)];
+                for (int c = 0; c < 3 && fibres; ++c) {
+                    P[(kFibreRow + c) * kBatch + k] = a0.empty() ? (c == 0 ? 1.0 : 0.0) : a0[3 * e + static_cast<size_t>(c)];
+                    P[(kFibreRow + 3 + c) * kBatch + k] = b0.empty() ? (c == 1 ? 1.0 : 0.0) : b0[3 * e + static_cast<size_t>(c)];
+                }
+            }
+        }
+        dN = {};
+        hgC = {};
+        a0 = {};
+        b0 = {};
     }
 };
 
@@ -173,7 +199,6 @@ struct Batch {
     alignas(64) double Y6[6][kBatch];      ///< the same for the six rows of a one-term series
     alignas(64) double f[NN][3][kBatch];   ///< element nodal forces
     alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
-    alignas(64) double Whg[NN == 8 ? kBatch : 1];      ///< hexahedra: hourglass energy
 };
 
 /// The element loop of one block, in short passes over batches of elements (PERFORMANCE.md lessons
@@ -192,8 +217,6 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     const bool needS = io.S || io.F;
     const bool viscoP = !needS && io.buf && !im.visco.empty();
     const size_t cellOff = NN == 4 ? 0 : im.nTetCells;
-    const size_t ne = es.size();
-    const double* __restrict dN = es.dN.data();
     // fibre directions: per element, or the group's, copied across a batch-wide row (same loops)
     const Impl::Group& grp = im.groups[static_cast<size_t>(b.group)];
     alignas(64) double uniformFibre[6][kBatch];
@@ -212,13 +235,12 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
         const int n = static_cast<int>(std::min<size_t>(kBatch, b.end - e0));
         const size_t batch = b.batchBase + (e0 - b.begin) / kBatch;  // slot of the viscous states
-        const bool perElement = im.fibresPerElement;
-        const double* __restrict A0x = perElement && useI4 ? es.a0.data() + e0 : uniformFibre[0];
-        const double* __restrict A0y = perElement && useI4 ? es.a0.data() + ne + e0 : uniformFibre[1];
-        const double* __restrict A0z = perElement && useI4 ? es.a0.data() + 2 * ne + e0 : uniformFibre[2];
-        const double* __restrict B0x = perElement && useI6 ? es.b0.data() + e0 : uniformFibre[3];
-        const double* __restrict B0y = perElement && useI6 ? es.b0.data() + ne + e0 : uniformFibre[4];
-        const double* __restrict B0z = perElement && useI6 ? es.b0.data() + 2 * ne + e0 : uniformFibre[5];
+        // the batch's element data: row r at G + r kBatch (ElementSet::pack)
+        const double* __restrict G = es.batchData(b, e0);
+        const double* __restrict dN = G;
+        const double* __restrict fib = im.fibresPerElement ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0];
+        const double* __restrict A0x = fib, *__restrict A0y = fib + kBatch, *__restrict A0z = fib + 2 * kBatch;
+        const double* __restrict B0x = fib + 3 * kBatch, *__restrict B0y = fib + 4 * kBatch, *__restrict B0z = fib + 5 * kBatch;
         if (viscoP && e0 + kBatch < b.end)
             // the states of the next batch are read once per step, usually from memory: ask early
             for (size_t v = 0; v < im.visco.size(); ++v) {
@@ -246,13 +268,12 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         // F = I + sum_a u_a (x) dN_a/dX and the invariants of C = F^T F
 #pragma omp simd
         for (int k = 0; k < n; ++k) {
-            const size_t e = e0 + static_cast<size_t>(k);
             double F0 = 1, F1 = 0, F2 = 0, F3 = 0, F4 = 1, F5 = 0, F6 = 0, F7 = 0, F8 = 1;
             if constexpr (NN == 4) {
                 // dN_0 = -(dN_1 + dN_2 + dN_3): sum_a u_a dN_a = sum_{a>0} (u_a - u_0) dN_a
                 for (int a = 1; a < 4; ++a) {
-                    const double g0 = dN[(3 * (a - 1)) * ne + e], g1 = dN[(3 * (a - 1) + 1) * ne + e],
-                                 g2 = dN[(3 * (a - 1) + 2) * ne + e];
+                    const double g0 = dN[(3 * (a - 1)) * kBatch + k], g1 = dN[(3 * (a - 1) + 1) * kBatch + k],
+                                 g2 = dN[(3 * (a - 1) + 2) * kBatch + k];
                     const double v0 = s.u[a][0][k] - s.u[0][0][k], v1 = s.u[a][1][k] - s.u[0][1][k],
                                  v2 = s.u[a][2][k] - s.u[0][2][k];
                     F0 += v0 * g0; F1 += v0 * g1; F2 += v0 * g2;
@@ -261,7 +282,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 }
             } else {
                 for (int a = 0; a < NN; ++a) {
-                    const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
+                    const double g0 = dN[(3 * a) * kBatch + k], g1 = dN[(3 * a + 1) * kBatch + k], g2 = dN[(3 * a + 2) * kBatch + k];
                     const double v0 = s.u[a][0][k], v1 = s.u[a][1][k], v2 = s.u[a][2][k];
                     F0 += v0 * g0; F1 += v0 * g1; F2 += v0 * g2;
                     F3 += v1 * g0; F4 += v1 * g1; F5 += v1 * g2;
@@ -271,6 +292,30 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             s.F[0][k] = F0; s.F[1][k] = F1; s.F[2][k] = F2;
             s.F[3][k] = F3; s.F[4][k] = F4; s.F[5][k] = F5;
             s.F[6][k] = F6; s.F[7][k] = F7; s.F[8][k] = F8;
+            if constexpr (NN == 8) {
+                // hourglass control (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with gamma_qa = h_qa - c_q . dN_a/dX,
+                // c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q (F - I = grad u); energy
+                // K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are sums and
+                // differences of node pairs (18 additions per component instead of 32 multiply-adds). Here,
+                // where u and F are at hand (a pass of its own reloaded them: 8 % of the hexahedral loop).
+                const double* __restrict C = G + ElementSet<NN>::kHgRow * kBatch;  // c_q: row 3q + i at C + (3q + i) kBatch
+                const auto hourglass = [&](int j, double g0, double g1, double g2) {  // component j, g = row j of F - I
+                    const double d01 = s.u[0][j][k] - s.u[1][j][k], d23 = s.u[2][j][k] - s.u[3][j][k],
+                                 d45 = s.u[4][j][k] - s.u[5][j][k], d67 = s.u[6][j][k] - s.u[7][j][k];
+                    const double a01 = s.u[0][j][k] + s.u[1][j][k], a23 = s.u[2][j][k] + s.u[3][j][k],
+                                 a45 = s.u[4][j][k] + s.u[5][j][k], a67 = s.u[6][j][k] + s.u[7][j][k];
+                    const double X = d01 + d23, Y = d45 + d67;
+                    s.Kh[j][k] = (X + Y) - (g0 * C[k] + g1 * C[kBatch + k] + g2 * C[2 * kBatch + k]);  // ( 1,-1, 1,-1, 1,-1, 1,-1)
+                    s.Kh[3 + j][k] = (a01 - a23) + (a67 - a45) -
+                                     (g0 * C[3 * kBatch + k] + g1 * C[4 * kBatch + k] + g2 * C[5 * kBatch + k]);  // ( 1, 1,-1,-1,-1,-1, 1, 1)
+                    s.Kh[6 + j][k] = (d01 - d23) + (d67 - d45) -
+                                     (g0 * C[6 * kBatch + k] + g1 * C[7 * kBatch + k] + g2 * C[8 * kBatch + k]);  // ( 1,-1,-1, 1,-1, 1, 1,-1)
+                    s.Kh[9 + j][k] = (Y - X) - (g0 * C[9 * kBatch + k] + g1 * C[10 * kBatch + k] + g2 * C[11 * kBatch + k]);  // (-1, 1,-1, 1, 1,-1, 1,-1)
+                };
+                hourglass(0, F0 - 1, F1, F2);
+                hourglass(1, F3, F4 - 1, F5);
+                hourglass(2, F6, F7, F8 - 1);
+            }
             const double C00 = F0 * F0 + F3 * F3 + F6 * F6;
             const double C11 = F1 * F1 + F4 * F4 + F7 * F7;
             const double C22 = F2 * F2 + F5 * F5 + F8 * F8;
@@ -576,51 +621,17 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
             }
         }
 
-        if constexpr (NN == 8) {
-            // hourglass control (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with gamma_qa = h_qa - c_q . dN_a/dX,
-            // c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q (F - I = grad u); energy
-            // K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are done as sums and
-            // differences of node pairs (18 additions per component instead of 32 multiply-adds).
-            if (io.buf || io.energy) {
-                const double* __restrict C = es.hgC.data() + e0;  // row 3q + i at C + (3q + i) ne
-                for (int j = 0; j < 3; ++j) {
-                    const double* __restrict u0 = s.u[0][j], *__restrict u1 = s.u[1][j], *__restrict u2 = s.u[2][j],
-                                             *__restrict u3 = s.u[3][j], *__restrict u4 = s.u[4][j], *__restrict u5 = s.u[5][j],
-                                             *__restrict u6 = s.u[6][j], *__restrict u7 = s.u[7][j];
-                    const double* __restrict Fj0 = s.F[3 * j];
-                    const double* __restrict Fj1 = s.F[3 * j + 1];
-                    const double* __restrict Fj2 = s.F[3 * j + 2];
-                    const double d0 = j == 0, d1 = j == 1, d2 = j == 2;
-                    double* __restrict H0 = s.Kh[j], *__restrict H1 = s.Kh[3 + j], *__restrict H2 = s.Kh[6 + j],
-                                       *__restrict H3 = s.Kh[9 + j];
-#pragma omp simd
-                    for (int k = 0; k < n; ++k) {
-                        const double d01 = u0[k] - u1[k], d23 = u2[k] - u3[k], d45 = u4[k] - u5[k], d67 = u6[k] - u7[k];
-                        const double a01 = u0[k] + u1[k], a23 = u2[k] + u3[k], a45 = u4[k] + u5[k], a67 = u6[k] + u7[k];
-                        const double X = d01 + d23, Y = d45 + d67;
-                        const double g0 = Fj0[k] - d0, g1 = Fj1[k] - d1, g2 = Fj2[k] - d2;
-                        const size_t e = static_cast<size_t>(k);
-                        H0[k] = (X + Y) - (g0 * C[e] + g1 * C[ne + e] + g2 * C[2 * ne + e]);                         // ( 1,-1, 1,-1, 1,-1, 1,-1)
-                        H1[k] = (a01 - a23) + (a67 - a45) - (g0 * C[3 * ne + e] + g1 * C[4 * ne + e] + g2 * C[5 * ne + e]);  // ( 1, 1,-1,-1,-1,-1, 1, 1)
-                        H2[k] = (d01 - d23) + (d67 - d45) - (g0 * C[6 * ne + e] + g1 * C[7 * ne + e] + g2 * C[8 * ne + e]);  // ( 1,-1,-1, 1,-1, 1, 1,-1)
-                        H3[k] = (Y - X) - (g0 * C[9 * ne + e] + g1 * C[10 * ne + e] + g2 * C[11 * ne + e]);           // (-1, 1,-1, 1, 1,-1, 1,-1)
-                    }
-                }
-                if (io.energy) {
-                    const double* __restrict K = es.hgK.data() + e0;
-                    for (int k = 0; k < n; ++k) {
-                        double w = 0;
-                        for (int r = 0; r < 12; ++r) w += s.Kh[r][k] * s.Kh[r][k];
-                        s.Whg[k] = 0.5 * K[k] * w;
-                    }
-                }
-            }
-        }
-
         if (io.energy) {
             for (int k = 0; k < n; ++k) energy += vol[e0 + static_cast<size_t>(k)] * s.W[k];
-            if constexpr (NN == 8)
-                for (int k = 0; k < n; ++k) energy += s.Whg[k];
+            if constexpr (NN == 8) {
+                // hourglass energy K/2 sum_q |h_q|^2
+                const double* __restrict K = es.hgK.data() + e0;
+                for (int k = 0; k < n; ++k) {
+                    double w = 0;
+                    for (int r = 0; r < 12; ++r) w += s.Kh[r][k] * s.Kh[r][k];
+                    energy += 0.5 * K[k] * w;
+                }
+            }
         }
 
         if (io.buf) {
@@ -635,8 +646,8 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 if constexpr (NN == 4) {
                     double s0 = 0, s1 = 0, s2 = 0;
                     for (int a = 1; a < 4; ++a) {
-                        const double g0 = dN[(3 * (a - 1)) * ne + e], g1 = dN[(3 * (a - 1) + 1) * ne + e],
-                                     g2 = dN[(3 * (a - 1) + 2) * ne + e];
+                        const double g0 = dN[(3 * (a - 1)) * kBatch + k], g1 = dN[(3 * (a - 1) + 1) * kBatch + k],
+                                     g2 = dN[(3 * (a - 1) + 2) * kBatch + k];
                         const double f0 = -(P0 * g0 + P1 * g1 + P2 * g2), f1 = -(P3 * g0 + P4 * g1 + P5 * g2),
                                      f2 = -(P6 * g0 + P7 * g1 + P8 * g2);
                         s.f[a][0][k] = f0;
@@ -652,7 +663,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 } else {
                     // with hourglass control: -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q,
                     // so f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q
-                    const double* __restrict hgC = es.hgC.data();
+                    const double* __restrict hgC = G + ElementSet<NN>::kHgRow * kBatch;
                     const double K = es.hgK[e];
                     double r[3][8];  // K sum_q h_qa h_q per component, the pair sums of the loop above reversed
 #pragma GCC unroll 3
@@ -670,7 +681,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     }
 #pragma GCC unroll 4
                     for (int q = 0; q < 4; ++q) {
-                        const double c0 = hgC[(3 * q) * ne + e], c1 = hgC[(3 * q + 1) * ne + e], c2 = hgC[(3 * q + 2) * ne + e];
+                        const double c0 = hgC[(3 * q) * kBatch + k], c1 = hgC[(3 * q + 1) * kBatch + k], c2 = hgC[(3 * q + 2) * kBatch + k];
                         const double k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
                         P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
                         P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
@@ -679,7 +690,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                     // (fully unrolled: a loop left over the nodes turns the dN loads into emulated gathers)
 #pragma GCC unroll 8
                     for (int a = 0; a < NN; ++a) {
-                        const double g0 = dN[(3 * a) * ne + e], g1 = dN[(3 * a + 1) * ne + e], g2 = dN[(3 * a + 2) * ne + e];
+                        const double g0 = dN[(3 * a) * kBatch + k], g1 = dN[(3 * a + 1) * kBatch + k], g2 = dN[(3 * a + 2) * kBatch + k];
                         const double f0 = -(P0 * g0 + P1 * g1 + P2 * g2) - r[0][a], f1 = -(P3 * g0 + P4 * g1 + P5 * g2) - r[1][a],
                                      f2 = -(P6 * g0 + P7 * g1 + P8 * g2) - r[2][a];
                         s.f[a][0][k] = f0;
@@ -1207,8 +1218,14 @@ void TLEDForceField::init() {
              " times the node count in their force buffers: the node numbering is poorly local; renumber the mesh "
              "(e.g. reverse Cuthill-McKee) for speed and memory");
     im.buf.assign(bufSize, 0.0);
-    im.tet.finish();
-    im.hex.finish();
+    // pack the element data batch by batch, in the order of the blocks' batches (tetrahedra first)
+    std::vector<size_t> batchStarts[2];
+    for (const Block& b : m_blocks) {
+        if (batchStarts[b.kind].empty()) (b.kind == 0 ? im.tet.batchOffset : im.hex.batchOffset) = b.batchBase;
+        for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) batchStarts[b.kind].push_back(e0);
+    }
+    im.tet.finish(batchStarts[0]);
+    im.hex.finish(batchStarts[1]);
 
     // viscoelasticity
     bool isoTaken = false, volTaken = false;
