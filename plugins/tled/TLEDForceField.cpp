@@ -238,7 +238,8 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         // the batch's element data: row r at G + r kBatch (ElementSet::pack)
         const double* __restrict G = es.batchData(b, e0);
         const double* __restrict dN = G;
-        const double* __restrict fib = im.fibresPerElement ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0];
+        const bool packFibres = im.fibresPerElement && es.rows > ElementSet<NN>::kFibreRow;
+        const double* __restrict fib = packFibres ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0];
         const double* __restrict A0x = fib, *__restrict A0y = fib + kBatch, *__restrict A0z = fib + 2 * kBatch;
         const double* __restrict B0x = fib + 3 * kBatch, *__restrict B0y = fib + 4 * kBatch, *__restrict B0z = fib + 5 * kBatch;
         if (viscoP && e0 + kBatch < b.end)

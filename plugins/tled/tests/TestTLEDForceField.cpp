@@ -563,17 +563,22 @@ TEST_CASE("TLEDForceField viscous states stay with their elements across blocks 
 
 TEST_CASE("TLEDForceField fibre directions per group and per element give the same forces",
           "[TLEDForceField]") {
-    // two groups of tetrahedra with different material directions: the vectorised loop reads them
-    // per group (no array) or per element (a cell array holding the same directions)
+    // two groups of tetrahedra or of hexahedra with different material directions: the vectorised
+    // loop reads them per group (no array) or per element (a cell array holding the same directions;
+    // for hexahedra its rows come after the hourglass vectors in the packed element data)
+    const bool hexes = GENERATE(false, true);
+    CAPTURE(hexes);
     fascia::MeshData mesh;
     mesh.points = gridPoints(6, 6, 8, 0.01);
-    mesh.tetrahedra = gridTets(6, 6, 8);
-    const size_t nt = mesh.tetrahedra.size();
-    mesh.tetrahedronGroup.resize(nt);
+    if (hexes) mesh.hexahedra = gridHexes(6, 6, 8);
+    else mesh.tetrahedra = gridTets(6, 6, 8);
+    const size_t nt = hexes ? mesh.hexahedra.size() : mesh.tetrahedra.size();
+    std::vector<int>& groups = hexes ? mesh.hexahedronGroup : mesh.tetrahedronGroup;
+    groups.resize(nt);
     std::vector<double> fibres;
     for (size_t e = 0; e < nt; ++e) {
         const bool upper = e >= nt / 2;
-        mesh.tetrahedronGroup[e] = upper ? 2 : 1;
+        groups[e] = upper ? 2 : 1;
         if (upper) fibres.insert(fibres.end(), {1.0, 0.0, 1.0});
         else fibres.insert(fibres.end(), {0.0, 1.0, 0.0});
     }
