@@ -69,17 +69,16 @@ struct ElementSet {
     template <class Block> const double* batchData(const Block& b, size_t e0) const {
         return pack.data() + (b.batchBase - batchOffset + (e0 - b.begin) / kBatch) * static_cast<size_t>(rows) * kBatch;
     }
-    /// packs the AoS arrays; batches: first element of every batch, in slot order
-    void finish(const std::vector<size_t>& batches) {
+    /// packs the AoS arrays; batches: first element and size of every batch, in slot order
+    void finish(const std::vector<std::pair<size_t, size_t>>& batches) {
         if (size() == 0) return;
         const bool fibres = !a0.empty() || !b0.empty();
         rows = kFibreRow + (fibres ? 6 : 0);
         pack.assign(batches.size() * static_cast<size_t>(rows) * kBatch, 0.0);
         for (size_t m = 0; m < batches.size(); ++m) {
             double* P = pack.data() + m * static_cast<size_t>(rows) * kBatch;
-            const size_t n = std::min<size_t>(kBatch, size() - batches[m]);
-            for (size_t k = 0; k < n; ++k) {
-                const size_t e = batches[m] + k;
+            for (size_t k = 0; k < batches[m].second; ++k) {
+                const size_t e = batches[m].first + k;
                 for (int r = 0; r < kDnRows; ++r) P[r * kBatch + k] = dN[e * 3 * NN + (NN == 4 ? 3 : 0) + static_cast<size_t>(r)];
                 if constexpr (NN == 8)
                     for (int r = 0; r < 12; ++r) P[(kHgRow + r) * kBatch + k] = hgC[e * 12 + static_cast<size_t>(r)];
@@ -297,8 +296,8 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 // hourglass control (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with gamma_qa = h_qa - c_q . dN_a/dX,
                 // c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q (F - I = grad u); energy
                 // K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are sums and
-                // differences of node pairs (18 additions per component instead of 32 multiply-adds). Here,
-                // where u and F are at hand (a pass of its own reloaded them: 8 % of the hexahedral loop).
+                // differences of node pairs (18 additions per component instead of 32 multiply-adds). Computed
+                // here, where u and F are at hand (a pass of its own reloaded them).
                 const double* __restrict C = G + ElementSet<NN>::kHgRow * kBatch;  // c_q: row 3q + i at C + (3q + i) kBatch
                 const auto hourglass = [&](int j, double g0, double g1, double g2) {  // component j, g = row j of F - I
                     const double d01 = s.u[0][j][k] - s.u[1][j][k], d23 = s.u[2][j][k] - s.u[3][j][k],
@@ -1220,10 +1219,10 @@ void TLEDForceField::init() {
              "(e.g. reverse Cuthill-McKee) for speed and memory");
     im.buf.assign(bufSize, 0.0);
     // pack the element data batch by batch, in the order of the blocks' batches (tetrahedra first)
-    std::vector<size_t> batchStarts[2];
+    std::vector<std::pair<size_t, size_t>> batchStarts[2];
     for (const Block& b : m_blocks) {
         if (batchStarts[b.kind].empty()) (b.kind == 0 ? im.tet.batchOffset : im.hex.batchOffset) = b.batchBase;
-        for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) batchStarts[b.kind].push_back(e0);
+        for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) batchStarts[b.kind].emplace_back(e0, std::min<size_t>(kBatch, b.end - e0));
     }
     im.tet.finish(batchStarts[0]);
     im.hex.finish(batchStarts[1]);
