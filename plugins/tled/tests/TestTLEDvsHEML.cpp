@@ -38,13 +38,9 @@ TEST_CASE("TLEDForceField and HEMLForceField give the same nodal forces on the s
     const Positions fT = b.forces();
     Positions fH(b.state->size(), Vec3::Zero());
     heml.addForce(*b.state, fH, 0);
-    double scale = 0, err = 0;
-    for (size_t i = 0; i < fT.size(); ++i) {
-        scale = std::max(scale, fT[i].norm());
-        err = std::max(err, (fT[i] - fH[i]).norm());
-    }
-    CAPTURE(scale, err);
-    CHECK(scale > 0);
-    CHECK(err < 1e-10 * scale);
+    const NodalDifference d = nodalDifference(fT, fH);
+    CAPTURE(d.scale, d.diff);
+    CHECK(d.scale > 0);
+    CHECK(d.diff < 1e-10 * d.scale);
     CHECK(b.ff->potentialEnergy(*b.state) == Approx(heml.potentialEnergy(*b.state)).epsilon(1e-10));
 }

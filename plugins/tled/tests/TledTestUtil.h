@@ -17,6 +17,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
@@ -207,6 +208,19 @@ inline Mat3 referenceS(const materials::BaseMaterial& m, const Mat3& F, const Ve
     if (Siso) *Siso = iso;
     if (Svol) *Svol = vol;
     return iso + vol;
+}
+
+/// The largest nodal vector of ref and the largest difference |other - ref| over the nodes.
+struct NodalDifference {
+    double scale = 0, diff = 0;
+};
+inline NodalDifference nodalDifference(const Positions& ref, const Positions& other) {
+    NodalDifference d;
+    for (size_t i = 0; i < ref.size(); ++i) {
+        d.scale = std::max(d.scale, ref[i].norm());
+        d.diff = std::max(d.diff, (other[i] - ref[i]).norm());
+    }
+    return d;
 }
 
 /// Symmetric 3x3 from 6 components xx yy zz xy yz xz.
