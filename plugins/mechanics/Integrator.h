@@ -10,4 +10,20 @@ public:
     core::Param<double> m_damping{this, core::ParamSpec("damping").unit("1/s").min(0).help("mass-proportional Rayleigh damping alpha: damping force -alpha m v"), 0.0};
 };
 
+/// Runs update(x, v, f, 1/m) on every component of every node of the group's state (x and v by
+/// reference), on the flat arrays so that the compiler vectorises it (core::forEachNodeRange).
+template <class Update>
+inline void updateNodes(core::MechanicalGroup& g, Update&& update) {
+    const double* __restrict invMass = g.invMass.data();
+    double* __restrict xp = core::flat(g.state->x());
+    double* __restrict vp = core::flat(g.state->v());
+    const double* __restrict fp = core::flat(g.state->f());
+    core::forEachNodeRange(static_cast<long>(g.state->x().size()), [&](long lo, long hi) {
+        for (long i = lo; i < hi; ++i) {
+            const double m = invMass[i];
+            for (long c = 3 * i; c < 3 * i + 3; ++c) update(xp[c], vp[c], fp[c], m);
+        }
+    });
+}
+
 } // namespace fascia::mechanics

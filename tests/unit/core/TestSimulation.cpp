@@ -167,6 +167,26 @@ TEST_CASE("A NaN on a large state is caught by the parallel finite check", "[Sim
     CHECK_THAT(e->message(), Contains("node " + std::to_string(n - 7)));
 }
 
+TEST_CASE("An infinite velocity in the last node of a large state is caught", "[Simulation][MechanicalGroup]") {
+    // 3,049 nodes: the finite check reads the node arrays in chunks of kNodeChunk nodes, 8 values at
+    // a time; the last node of the last chunk is in its remainder
+    const int n = int(kParallelNodes) + 1001;
+    std::string positions;
+    for (int i = 0; i < n; ++i) positions += std::to_string(i) + " 0 0 ";
+    auto sim = scene(R"(<Node name="root" dt="0.01"><Node name="body"><TestEuler name="euler"/>
+    <TestState name="state" position=")" + positions + R"("/><TestMass name="mass" mass="2"/></Node></Node>)");
+    sim->run(1);
+    auto& s = sim->state("state");
+    const size_t bad = GENERATE(size_t(0), size_t(1500), size_t(3048));
+    CAPTURE(bad);
+    s.v()[bad][2] = -INFINITY;
+    auto e = errorOf([&] { sim->run(1); });
+    REQUIRE(e);
+    INFO(e->what());
+    CHECK(e->kind() == ErrorKind::Simulation);
+    CHECK_THAT(e->message(), Contains("node " + std::to_string(bad) + " has a non-finite position"));
+}
+
 TEST_CASE("Components without a state or an integrator are warned about, not fatal", "[Simulation]") {
     auto sim = scene(R"(<Node name="root" dt="0.1">
   <TestNaN name="lonely"/>
