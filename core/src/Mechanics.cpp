@@ -104,7 +104,7 @@ std::string vecText(const Vec3& v) {
 
 void MechanicalGroup::checkFinite(double t) {
     // fast test: one pass over x and v (0 * a non-finite value is NaN, 0 * a finite one is 0); the
-    // slow one below only when it fails (and returns when the sum of finite values overflowed)
+    // slow one below only when it fails
     const Positions& x = state->x();
     const Positions& v = state->v();
     const long n = static_cast<long>(std::min(x.size(), v.size()));

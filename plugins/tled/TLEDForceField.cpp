@@ -238,7 +238,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         const double* __restrict G = es.batchData(b, e0);
         const double* __restrict dN = G;
         // the element data two batches ahead (at the block's start, the next one too): a batch reads
-        // its data as 9-36 rows of 4 cache lines each, short streams that the hardware prefetchers
+        // its data as 9-42 rows of 4 cache lines each, short streams that the hardware prefetchers
         // pick up late (docs/performance.md: 10-40 % on large meshes; two ahead measured faster than one)
         for (size_t ahead = e0 == b.begin ? 1 : 2; ahead <= 2; ++ahead)
             if (e0 + ahead * kBatch < b.end)
