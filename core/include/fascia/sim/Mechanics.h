@@ -108,18 +108,6 @@ struct MechanicalGroup;
 /// loops gave 5-10 % of a 2-thread step, docs/performance.md).
 constexpr long kParallelNodes = 2048;
 
-/// Runs body(i) for i in [0, n): on the OpenMP threads above kParallelNodes, else serially (no
-/// parallel region at all: even an inactive one costs about 0.3 us).
-template <class Body>
-inline void forEachNode(long n, Body&& body) {
-    if (n > kParallelNodes) {
-#pragma omp parallel for schedule(static)
-        for (long i = 0; i < n; ++i) body(i);
-    } else {
-        for (long i = 0; i < n; ++i) body(i);
-    }
-}
-
 /// Nodes per chunk of forEachNodeRange: fixed (never the thread count), so that every node goes
 /// through the same code path (vector body or remainder) for any number of threads.
 constexpr long kNodeChunk = 1024;
@@ -136,6 +124,15 @@ inline void forEachNodeRange(long n, Body&& body) {
     } else {
         for (long c = 0; c < chunks; ++c) body(c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
     }
+}
+
+/// Runs body(i) for i in [0, n), chunk by chunk through forEachNodeRange (on the OpenMP threads
+/// above kParallelNodes; below it no parallel region at all: even an inactive one costs about 0.3 us).
+template <class Body>
+inline void forEachNode(long n, Body&& body) {
+    forEachNodeRange(n, [&](long lo, long hi) {
+        for (long i = lo; i < hi; ++i) body(i);
+    });
 }
 
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "node arrays are read as 3 doubles per node");
