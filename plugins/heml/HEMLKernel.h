@@ -287,24 +287,18 @@ double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) 
                 const double a = dI1 + dI2 * I1;
                 double Sg[6];
                 for (int q = 0; q < 6; ++q) Sg[q] = a * d.G[q][e0 + j] - dI2 * c.H[q][j];
-                if (useI4) {
-                    const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j], s4 = c.dI4[j];
-                    Sg[0] += s4 * w1 * w1;
-                    Sg[1] += s4 * w2 * w2;
-                    Sg[2] += s4 * w3 * w3;
-                    Sg[3] += s4 * w1 * w2;
-                    Sg[4] += s4 * w2 * w3;
-                    Sg[5] += s4 * w1 * w3;
-                }
-                if (useI6) {
-                    const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j], s6 = c.dI6[j];
-                    Sg[0] += s6 * w1 * w1;
-                    Sg[1] += s6 * w2 * w2;
-                    Sg[2] += s6 * w3 * w3;
-                    Sg[3] += s6 * w1 * w2;
-                    Sg[4] += s6 * w2 * w3;
-                    Sg[5] += s6 * w1 * w3;
-                }
+                // Sg += s w w^T (6 components), w = V^-1 a0 or V^-1 b0
+                const auto addFibre = [&](const DVec* w, double sf) {
+                    const double w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
+                    Sg[0] += sf * w1 * w1;
+                    Sg[1] += sf * w2 * w2;
+                    Sg[2] += sf * w3 * w3;
+                    Sg[3] += sf * w1 * w2;
+                    Sg[4] += sf * w2 * w3;
+                    Sg[5] += sf * w1 * w3;
+                };
+                if (useI4) addFibre(d.w4, c.dI4[j]);
+                if (useI6) addFibre(d.w6, c.dI6[j]);
                 traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
                 for (int k = 0; k < 6; ++k) g[k] *= V;
                 Qiso = V * c.dJiso[j];

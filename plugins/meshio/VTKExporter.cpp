@@ -8,6 +8,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -58,9 +60,6 @@ void VTKExporter::init() {
             if (ff->node()->findInContext<core::BaseMechanicalState>() == m_st && (ff->tetrahedra() || ff->hexahedra()))
                 m_forceFields.push_back(ff);
     });
-    if (m_forceFields.size() > 1)
-        warn("writes the cells of '" + m_forceFields.front()->name() + "' only; " + std::to_string(m_forceFields.size() - 1) +
-             " other element force field(s) on the same state are not exported");
     m_written.clear();
     m_listed = 0;
     m_lastCollection = 0;
@@ -88,34 +87,43 @@ void VTKExporter::writeStep(double t, long step) {
     for (size_t i = 0; i < n; ++i) pts->SetPoint(vtkIdType(i), m_st->x()[i].data());
     grid->SetPoints(pts);
 
-    // cells: the elements of the force fields (first one that has them), else those of the mesh source
-    const Tetrahedra* tets = nullptr;
-    const Hexahedra* hexes = nullptr;
-    core::BaseForceField* cellOwner = nullptr;
+    // cells: the elements of every element force field on the state, in scene order (each one's
+    // tetrahedra, then its hexahedra, the order of its cellData), else those of the mesh source
+    struct Part {
+        const Tetrahedra* tets = nullptr;
+        const Hexahedra* hexes = nullptr;
+        core::BaseForceField* ff = nullptr;
+        size_t first = 0, count = 0;  ///< its cells in the grid
+    };
+    std::vector<Part> parts;
+    size_t cells = 0;
     for (auto* ff : m_forceFields) {
-        tets = ff->tetrahedra();
-        hexes = ff->hexahedra();
-        cellOwner = ff;
-        break;
+        Part p{ff->tetrahedra(), ff->hexahedra(), ff, cells, 0};
+        p.count = (p.tets ? p.tets->size() : 0) + (p.hexes ? p.hexes->size() : 0);
+        cells += p.count;
+        parts.push_back(p);
     }
-    if (!cellOwner)
+    if (parts.empty())
         if (auto* topo = node()->findInContext<core::BaseTopology>(); topo && topo->meshData().points.size() == n) {
-            tets = &topo->meshData().tetrahedra;
-            hexes = &topo->meshData().hexahedra;
+            Part p{&topo->meshData().tetrahedra, &topo->meshData().hexahedra, nullptr, 0, 0};
+            p.count = p.tets->size() + p.hexes->size();
+            cells = p.count;
+            parts.push_back(p);
         }
-    const size_t nt = tets ? tets->size() : 0, nh = hexes ? hexes->size() : 0;
-    grid->Allocate(vtkIdType(nt + nh));
-    if (tets)
-        for (auto& e : *tets) {
-            vtkIdType ids[4] = {e[0], e[1], e[2], e[3]};
-            grid->InsertNextCell(10 /* VTK_TETRA */, 4, ids);
-        }
-    if (hexes)
-        for (auto& e : *hexes) {
-            vtkIdType ids[8] = {e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7]};
-            grid->InsertNextCell(12 /* VTK_HEXAHEDRON */, 8, ids);
-        }
-    if (nt + nh == 0) {
+    grid->Allocate(vtkIdType(cells));
+    for (const Part& p : parts) {
+        if (p.tets)
+            for (auto& e : *p.tets) {
+                vtkIdType ids[4] = {e[0], e[1], e[2], e[3]};
+                grid->InsertNextCell(10 /* VTK_TETRA */, 4, ids);
+            }
+        if (p.hexes)
+            for (auto& e : *p.hexes) {
+                vtkIdType ids[8] = {e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7]};
+                grid->InsertNextCell(12 /* VTK_HEXAHEDRON */, 8, ids);
+            }
+    }
+    if (cells == 0) {
         for (size_t i = 0; i < n; ++i) {
             vtkIdType id = vtkIdType(i);
             grid->InsertNextCell(1 /* VTK_VERTEX */, 1, &id);
@@ -138,19 +146,47 @@ void VTKExporter::writeStep(double t, long step) {
     addPointVectors("force", [&](size_t i) { return m_st->f()[i]; });
     addPointVectors("reaction", [&](size_t i) { return m_st->reaction()[i]; });
 
-    if (m_cellData.get() && cellOwner) {
-        std::vector<core::CellField> fields;
-        cellOwner->cellData(*m_st, fields);
-        const size_t cells = nt + nh;
-        for (auto& f : fields) {
-            if (f.components <= 0 || f.values.size() != size_t(f.components) * cells) continue;
-            vtkNew<vtkDoubleArray> a;
-            a->SetName(f.name.c_str());
-            a->SetNumberOfComponents(f.components);
-            a->SetNumberOfTuples(vtkIdType(cells));
-            for (size_t c = 0; c < cells; ++c) a->SetTuple(vtkIdType(c), f.values.data() + c * f.components);
-            grid->GetCellData()->AddArray(a);
+    if (parts.size() > 1) {
+        // which force field a cell belongs to (its index among them, in scene order), to threshold on in ParaView
+        vtkNew<vtkDoubleArray> a;
+        a->SetName("forceField");
+        a->SetNumberOfTuples(vtkIdType(cells));
+        for (size_t i = 0; i < parts.size(); ++i)
+            for (size_t c = 0; c < parts[i].count; ++c) a->SetValue(vtkIdType(parts[i].first + c), double(i));
+        grid->GetCellData()->AddArray(a);
+    }
+    if (m_cellData.get() && cells > 0) {
+        // one array per quantity over all cells; cells of a force field that does not offer it are NaN
+        std::vector<vtkSmartPointer<vtkDoubleArray>> arrays;
+        for (const Part& p : parts) {
+            if (!p.ff) continue;
+            std::vector<core::CellField> fields;
+            p.ff->cellData(*m_st, fields);
+            for (auto& f : fields) {
+                if (f.components <= 0 || f.values.size() != size_t(f.components) * p.count) continue;
+                auto find = [&](const std::string& name) -> vtkDoubleArray* {
+                    for (auto& x : arrays)
+                        if (name == x->GetName()) return x;
+                    return nullptr;
+                };
+                std::string name = f.name;
+                vtkDoubleArray* a = find(name);
+                if (a && a->GetNumberOfComponents() != f.components) {  // same name, another shape: an array of its own
+                    name += "_" + p.ff->name();
+                    a = find(name);
+                }
+                if (!a) {
+                    arrays.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+                    a = arrays.back();
+                    a->SetName(name.c_str());
+                    a->SetNumberOfComponents(f.components);
+                    a->SetNumberOfTuples(vtkIdType(cells));
+                    a->Fill(std::numeric_limits<double>::quiet_NaN());
+                }
+                for (size_t c = 0; c < p.count; ++c) a->SetTuple(vtkIdType(p.first + c), f.values.data() + c * f.components);
+            }
         }
+        for (auto& a : arrays) grid->GetCellData()->AddArray(a);
     }
 
     const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp");

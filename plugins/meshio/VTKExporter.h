@@ -6,8 +6,13 @@
 namespace fascia::meshio {
 
 /// Writes a ParaView time series: <outputDir>/<filename>.pvd plus one .vtu per output step, with
-/// point data displacement, velocity and force, and the cell data the force fields in its context
-/// provide (J, stresses ...). Each file is written under a temporary name and renamed, so a run
+/// point data displacement, velocity, force and reaction. Its cells are the elements of every element
+/// force field acting on the state, in scene order (each one's tetrahedra, then its hexahedra), else
+/// those of the mesh source in its context, with the cell data the force fields provide (J,
+/// stresses ...): one array per quantity over all cells, NaN in the cells of a force field that does
+/// not offer it (a quantity two force fields offer with different shapes gets an array per force
+/// field, "name_forceFieldName"). With two or more force fields a cell array "forceField" gives each
+/// cell's force field (0, 1 ... in scene order). Each file is written under a temporary name and renamed, so a run
 /// killed at any moment leaves only complete files (and the .pvd lists only those). The .pvd is
 /// rewritten after every file while the series is short; past 100 files at most once a second of
 /// wall time (a full rewrite per file would grow quadratically), and always at the end of the run.

@@ -1,16 +1,27 @@
 // TLEDForceField in a whole scene (XML, mesh source, mass, integrator, constraints): the TLED paper's
 // section 6.2 compression-relaxation of a 0.1 m cube with the transversely isotropic viscoelastic
-// liver model, laterally free (rollers), against the homogeneous quasi-static reference.
+// liver model, laterally free (rollers), against the homogeneous quasi-static reference; hexahedra in
+// bending; and the exporter with a TLED and a HEML force field on one state.
 #include "fascia/base/Error.h"
 #include "fascia/sim/Simulation.h"
 
 #include <catch2/catch.hpp>
 
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <unistd.h>
 #include <utility>
+#include <vector>
 
 namespace core = fascia::core;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -212,4 +223,66 @@ TEST_CASE("TLEDForceField scene errors are located at the element's line", "[TLE
         CAPTURE(msg);
         CHECK(msg.find("bad.xml:5: error: TLEDForceField 'tled':") != std::string::npos);
     }
+}
+
+TEST_CASE("VTKExporter writes the cells and cell data of every element force field on the state",
+          "[TLEDForceField][scene][VTKExporter]") {
+    // HEML on the 162 tetrahedra of one grid, TLED on the 27 hexahedra of a second grid over the same
+    // nodes, both acting on one state
+    const fs::path dir = fs::temp_directory_path() / ("fascia-tled-export-" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto sim = core::Simulation::fromString(R"(<Node name="root" dt="0.0001">
+  <GridMesh name="tets" min="0 0 0" max="0.1 0.1 0.1" resolution="3 3 3" element="tetrahedra6"/>
+  <GridMesh name="hexes" min="0 0 0" max="0.1 0.1 0.1" resolution="3 3 3" element="hexahedra"/>
+  <MechanicalObject name="state" position="@tets.positions"/>
+  <LumpedMass density="1000"/>
+  <NeoHookean youngModulus="3000" poissonRatio="0.45"/>
+  <HEMLForceField name="heml" tetrahedra="@tets.tetrahedra"/>
+  <TLEDForceField name="tled" hexahedra="@hexes.hexahedra"/>
+  <SemiImplicitEuler/>
+  <FixedConstraint group="zmin"/>
+  <ConstantForce group="zmax" totalForce="0 0 -0.5"/>
+  <VTKExporter name="out" every="5"/>
+</Node>)",
+                                            "export.xml", ".", {dir.string(), 0});
+    sim->run(5);
+    sim->finish();
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName((dir / "out_000005.vtu").string().c_str());
+    reader->Update();
+    vtkUnstructuredGrid* g = reader->GetOutput();
+    REQUIRE(g->GetNumberOfCells() == 162 + 27);
+    for (vtkIdType c = 0; c < 162 + 27; ++c) CHECK(g->GetCellType(c) == (c < 162 ? 10 : 12));  // VTK_TETRA, VTK_HEXAHEDRON
+    vtkDataArray* owner = g->GetCellData()->GetArray("forceField");
+    vtkDataArray* J = g->GetCellData()->GetArray("J");
+    vtkDataArray* S = g->GetCellData()->GetArray("S");
+    REQUIRE(owner);
+    REQUIRE(J);
+    REQUIRE(S);
+    // each force field's own values in its own cells
+    std::vector<core::CellField> heml, tled;
+    dynamic_cast<core::BaseForceField*>(sim->find("heml"))->cellData(sim->state("state"), heml);
+    dynamic_cast<core::BaseForceField*>(sim->find("tled"))->cellData(sim->state("state"), tled);
+    auto field = [](const std::vector<core::CellField>& fs, const std::string& name) {
+        for (auto& f : fs)
+            if (f.name == name) return f.values;
+        FAIL("no cell field " << name);
+        return std::vector<double>{};
+    };
+    const auto Jh = field(heml, "J"), Jt = field(tled, "J"), St = field(tled, "S");
+    bool deformed = false;
+    for (vtkIdType c = 0; c < 162; ++c) {
+        CHECK(owner->GetTuple1(c) == 0);
+        CHECK(J->GetTuple1(c) == Jh[size_t(c)]);
+        deformed = deformed || J->GetTuple1(c) != 1;
+        CHECK(std::isnan(S->GetComponent(c, 0)));  // HEML offers no S
+    }
+    for (vtkIdType c = 0; c < 27; ++c) {
+        CHECK(owner->GetTuple1(162 + c) == 1);
+        CHECK(J->GetTuple1(162 + c) == Jt[size_t(c)]);
+        for (int k = 0; k < 6; ++k) CHECK(S->GetComponent(162 + c, k) == St[6 * size_t(c) + size_t(k)]);
+    }
+    CHECK(deformed);
+    fs::remove_all(dir);
 }
