@@ -2,6 +2,7 @@
 #include "HEMLKernel.h"
 
 #include "ViscoelasticProny.h"
+#include "fascia/base/NodeOrder.h"
 #include "fascia/materials/Laws.h"
 #include "fascia/scene/Node.h"
 
@@ -60,69 +61,6 @@ double runAny(HEMLData& d, const Block& b, const std::vector<int>& kinds, const 
     case Ortho: return runBlock<LawEval<OrthotropicLaw>, Forces, Visco>(d, b, {lawOf<OrthotropicLaw>(m)}, x);
     default: return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
     }
-}
-
-// reverse Cuthill-McKee order of the nodes (PERFORMANCE.md lesson 5): internal -> input node
-std::vector<int> reverseCuthillMcKee(size_t n, const Tetrahedra& tets) {
-    std::vector<std::vector<int>> adj(n);
-    for (const auto& t : tets)
-        for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b)
-                if (a != b) adj[t[a]].push_back(t[b]);
-    std::vector<int> degree(n);
-    for (size_t i = 0; i < n; ++i) {
-        auto& v = adj[i];
-        std::sort(v.begin(), v.end());
-        v.erase(std::unique(v.begin(), v.end()), v.end());
-        degree[i] = int(v.size());
-    }
-    auto byDegree = [&](int a, int b) { return degree[a] != degree[b] ? degree[a] < degree[b] : a < b; };
-    for (auto& v : adj) std::sort(v.begin(), v.end(), byDegree);
-
-    std::vector<int> seeds(n);
-    std::iota(seeds.begin(), seeds.end(), 0);
-    std::sort(seeds.begin(), seeds.end(), byDegree);
-
-    std::vector<char> seen(n, 0);
-    std::vector<int> order;
-    order.reserve(n);
-    std::vector<int> level(n, -1);
-    auto bfs = [&](int start, std::vector<int>& out, std::vector<char>& mark) {
-        size_t head = out.size();
-        out.push_back(start);
-        mark[start] = 1;
-        while (head < out.size()) {
-            const int v = out[head++];
-            for (int w : adj[v])
-                if (!mark[w]) {
-                    mark[w] = 1;
-                    out.push_back(w);
-                }
-        }
-    };
-    for (int s : seeds) {
-        if (seen[s]) continue;
-        // pseudo-peripheral start: the least connected node of the last BFS level from s
-        std::vector<int> comp;
-        std::vector<char> mark = seen;
-        bfs(s, comp, mark);
-        int start = s;
-        // BFS levels from s (comp is in BFS order)
-        for (int v : comp) level[v] = -1;
-        level[s] = 0;
-        int maxLevel = 0;
-        for (int v : comp)
-            for (int w : adj[v])
-                if (level[w] < 0) {
-                    level[w] = level[v] + 1;
-                    maxLevel = std::max(maxLevel, level[w]);
-                }
-        for (int v : comp)
-            if (level[v] == maxLevel && (start == s || byDegree(v, start))) start = v;
-        bfs(start, order, seen);
-    }
-    std::reverse(order.begin(), order.end());
-    return order;
 }
 
 // positions (state order, 3 doubles per node) into the internal order (4 per node); call inside a
@@ -353,7 +291,8 @@ void HEMLForceField::precompute(const Positions& rest) {
     d.nElements = ne;
 
     // node order
-    d.nodeOf = reverseCuthillMcKee(n, m_tets);
+    // reverse Cuthill-McKee (PERFORMANCE.md lesson 5): internal -> input node
+    d.nodeOf = reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
     d.internalOf.assign(n, 0);
     for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
 

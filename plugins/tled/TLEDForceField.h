@@ -57,6 +57,10 @@
 /// Parallelism (DESIGN.md principle 5): elements are split into fixed blocks (independent of the thread
 /// count); each block adds into its own node buffer (covering only the node range it touches) and the
 /// buffers are summed per node in block order, so results are bitwise identical for any thread count.
+/// A block's buffer spans the range of node indices its elements use, so the mesh file's numbering
+/// matters: when it makes the buffers more than twice as large as a reverse Cuthill-McKee numbering
+/// of the nodes with the elements sorted by their lowest node (a Gmsh file's order: blocks that span
+/// every node), the force field works in that order internally; the state's order is unchanged.
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -104,6 +108,8 @@ public:
     double elementTimeStep(size_t e, double rho) const;
     /// Number of fixed blocks the element loop is split into (for tests of determinism).
     size_t blockCount() const { return m_blocks.size(); }
+    /// Node rows of the blocks' force buffers, all blocks together (for tests of the node ordering).
+    size_t bufferRows() const;
 
     core::Param<MeshData> m_mesh{this, core::ParamSpec("mesh").help(
         "mesh to take the elements (tetrahedra and hexahedra), group tags and cell arrays from, e.g. "
