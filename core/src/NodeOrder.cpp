@@ -31,40 +31,47 @@ std::vector<int> reverseCuthillMcKee(size_t n, std::initializer_list<ElementNode
     std::vector<char> seen(n, 0);
     std::vector<int> order;
     order.reserve(n);
-    std::vector<int> level(n, -1);
-    auto bfs = [&](int start, std::vector<int>& out, std::vector<char>& mark) {
-        size_t head = out.size();
-        out.push_back(start);
-        mark[start] = 1;
-        while (head < out.size()) {
-            const int v = out[head++];
+    auto bfs = [&](int start) {
+        size_t head = order.size();
+        order.push_back(start);
+        seen[start] = 1;
+        while (head < order.size()) {
+            const int v = order[head++];
             for (int w : adj[v])
-                if (!mark[w]) {
-                    mark[w] = 1;
-                    out.push_back(w);
+                if (!seen[w]) {
+                    seen[w] = 1;
+                    order.push_back(w);
                 }
         }
     };
+    // BFS distance from the first node of each connected part (every node belongs to one part, so
+    // each is set once; -1: not reached yet)
+    std::vector<int> level(n, -1);
+    std::vector<int> part;
     for (int s : seeds) {
         if (seen[s]) continue;
+        if (adj[s].empty()) {  // a node no element uses: a part of its own
+            seen[s] = 1;
+            order.push_back(s);
+            continue;
+        }
         // pseudo-peripheral start: the least connected node of the last BFS level from s
-        std::vector<int> comp;
-        std::vector<char> mark = seen;
-        bfs(s, comp, mark);
-        int start = s;
-        // BFS levels from s (comp is in BFS order)
-        for (int v : comp) level[v] = -1;
+        part.assign(1, s);
         level[s] = 0;
         int maxLevel = 0;
-        for (int v : comp)
+        for (size_t head = 0; head < part.size(); ++head) {
+            const int v = part[head];
             for (int w : adj[v])
                 if (level[w] < 0) {
                     level[w] = level[v] + 1;
                     maxLevel = std::max(maxLevel, level[w]);
+                    part.push_back(w);
                 }
-        for (int v : comp)
+        }
+        int start = s;
+        for (int v : part)
             if (level[v] == maxLevel && (start == s || byDegree(v, start))) start = v;
-        bfs(start, order, seen);
+        bfs(start);
     }
     std::reverse(order.begin(), order.end());
     return order;

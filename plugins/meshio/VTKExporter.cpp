@@ -146,7 +146,7 @@ void VTKExporter::writeStep(double t, long step) {
     addPointVectors("force", [&](size_t i) { return m_st->f()[i]; });
     addPointVectors("reaction", [&](size_t i) { return m_st->reaction()[i]; });
 
-    if (parts.size() > 1) {
+    if (parts.size() > 1 && cells > 0) {
         // which force field a cell belongs to (its index among them, in scene order), to threshold on in ParaView
         vtkNew<vtkDoubleArray> a;
         a->SetName("forceField");
@@ -169,10 +169,11 @@ void VTKExporter::writeStep(double t, long step) {
                         if (name == x->GetName()) return x;
                     return nullptr;
                 };
+                // the same name with another shape: an array of its own ("J_name", then "J_name_2" ...)
                 std::string name = f.name;
                 vtkDoubleArray* a = find(name);
-                if (a && a->GetNumberOfComponents() != f.components) {  // same name, another shape: an array of its own
-                    name += "_" + p.ff->name();
+                for (int k = 1; a && a->GetNumberOfComponents() != f.components; ++k) {
+                    name = f.name + "_" + p.ff->name() + (k > 1 ? "_" + std::to_string(k) : "");
                     a = find(name);
                 }
                 if (!a) {

@@ -1012,7 +1012,7 @@ void TLEDForceField::init() {
     // file's order, a 200k-tetrahedron mesh had blocks whose buffers spanned all the nodes and ran 7
     // times slower; on a structured grid the file's (lexicographic) order has 1.25 times the buffers of
     // the renumbered one but runs faster (docs/performance.md).
-    auto bufferRows = [&](const std::vector<int>& internal, const std::vector<std::vector<size_t>>& lists) {
+    auto rowsFor = [&](const std::vector<int>& internal, const std::vector<std::vector<size_t>>& lists) {
         size_t total = 0;
         for (size_t gi = 0; gi < im.groups.size(); ++gi) {
             const int nn = im.groups[gi].kind == 0 ? 4 : 8;
@@ -1034,31 +1034,39 @@ void TLEDForceField::init() {
     };
     std::vector<int> internalOf(im.nodeCount);
     std::iota(internalOf.begin(), internalOf.end(), 0);
-    const size_t fileRows = bufferRows(internalOf, perGroup);
-    std::vector<int> rcm = reverseCuthillMcKee(im.nodeCount, {{nT ? m_tets.front().data() : nullptr, nT, 4},
-                                                              {nH ? m_hexes.front().data() : nullptr, nH, 8}});
-    std::vector<int> rcmInternal(im.nodeCount);
-    for (size_t q = 0; q < im.nodeCount; ++q) rcmInternal[static_cast<size_t>(rcm[q])] = static_cast<int>(q);
-    std::vector<std::vector<size_t>> sortedGroups(perGroup.size());
-    for (size_t gi = 0; gi < im.groups.size(); ++gi) {
-        const int nn = im.groups[gi].kind == 0 ? 4 : 8;
-        const std::vector<size_t>& list = perGroup[gi];
-        std::vector<int> lowest(list.size());
-        for (size_t i = 0; i < list.size(); ++i) {
-            const int* nd = nn == 4 ? m_tets[list[i]].data() : m_hexes[list[i]].data();
-            int m = rcmInternal[static_cast<size_t>(nd[0])];
-            for (int k = 1; k < nn; ++k) m = std::min(m, rcmInternal[static_cast<size_t>(nd[k])]);
-            lowest[i] = m;
+    const size_t fileRows = rowsFor(internalOf, perGroup);
+    // (every numbering needs at least one row per node in use: below twice that, keep the file's order
+    // without computing another)
+    std::vector<char> inUse(im.nodeCount, 0);
+    for (const auto& t4 : m_tets) for (int v : t4) inUse[static_cast<size_t>(v)] = 1;
+    for (const auto& h8 : m_hexes) for (int v : h8) inUse[static_cast<size_t>(v)] = 1;
+    const size_t used = static_cast<size_t>(std::count(inUse.begin(), inUse.end(), 1));
+    if (fileRows > 2 * used) {
+        std::vector<int> rcm = reverseCuthillMcKee(im.nodeCount, {{nT ? m_tets.front().data() : nullptr, nT, 4},
+                                                                  {nH ? m_hexes.front().data() : nullptr, nH, 8}});
+        std::vector<int> rcmInternal(im.nodeCount);
+        for (size_t q = 0; q < im.nodeCount; ++q) rcmInternal[static_cast<size_t>(rcm[q])] = static_cast<int>(q);
+        std::vector<std::vector<size_t>> sortedGroups(perGroup.size());
+        for (size_t gi = 0; gi < im.groups.size(); ++gi) {
+            const int nn = im.groups[gi].kind == 0 ? 4 : 8;
+            const std::vector<size_t>& list = perGroup[gi];
+            std::vector<int> lowest(list.size());
+            for (size_t i = 0; i < list.size(); ++i) {
+                const int* nd = nn == 4 ? m_tets[list[i]].data() : m_hexes[list[i]].data();
+                int m = rcmInternal[static_cast<size_t>(nd[0])];
+                for (int k = 1; k < nn; ++k) m = std::min(m, rcmInternal[static_cast<size_t>(nd[k])]);
+                lowest[i] = m;
+            }
+            std::vector<size_t> idx(list.size());
+            std::iota(idx.begin(), idx.end(), size_t(0));
+            std::stable_sort(idx.begin(), idx.end(), [&](size_t x, size_t y) { return lowest[x] < lowest[y]; });
+            for (size_t i : idx) sortedGroups[gi].push_back(list[i]);
         }
-        std::vector<size_t> idx(list.size());
-        std::iota(idx.begin(), idx.end(), size_t(0));
-        std::stable_sort(idx.begin(), idx.end(), [&](size_t x, size_t y) { return lowest[x] < lowest[y]; });
-        for (size_t i : idx) sortedGroups[gi].push_back(list[i]);
-    }
-    if (fileRows > 2 * bufferRows(rcmInternal, sortedGroups)) {
-        im.nodeOf = std::move(rcm);
-        internalOf = std::move(rcmInternal);
-        perGroup = std::move(sortedGroups);
+        if (fileRows > 2 * rowsFor(rcmInternal, sortedGroups)) {
+            im.nodeOf = std::move(rcm);
+            internalOf = std::move(rcmInternal);
+            perGroup = std::move(sortedGroups);
+        }
     }
     // tetrahedra: within each block, the 4 elements of a SIMD quad come from the 4 quarters of the
     // block, so that they share no node: neighbouring tetrahedra (6 per cube cell share its diagonal)
@@ -1279,8 +1287,8 @@ void TLEDForceField::init() {
         }
     if (bufSize > 4 * 16 * im.nodeCount && m_blocks.size() > 16)
         warn("the element blocks span " + std::to_string(bufSize / (4 * im.nodeCount)) +
-             " times the node count in their force buffers, in the better of the file's and a reverse Cuthill-McKee "
-             "node order: elements that share nodes are far apart in this mesh (speed and memory suffer)");
+             " times the node count in their force buffers, in the node order used (the file's, or a reverse "
+             "Cuthill-McKee one when that is more than twice as compact): speed and memory suffer");
     im.buf.assign(bufSize, 0.0);
     // pack the element data batch by batch, in the order of the blocks' batches (tetrahedra first)
     std::vector<std::pair<size_t, size_t>> batchStarts[2];

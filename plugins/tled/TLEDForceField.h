@@ -149,8 +149,8 @@ private:
         int kind = 0;      ///< 0 tetrahedra, 1 hexahedra
         int group = 0;     ///< index into Impl::groups
         size_t begin = 0, end = 0;  ///< internal element range of its kind
-        int nodeLo = 0, nodeHi = -1;  ///< node range its elements touch
-        size_t bufOffset = 0;         ///< offset of its node buffer in Impl::buf (doubles, 4 per node)
+        int nodeLo = 0, nodeHi = -1;  ///< internal node range its elements touch
+        size_t bufOffset = 0;         ///< offset of its node buffer in Impl::buf (doubles, 4 per internal node)
         size_t batchBase = 0;         ///< index of its first element batch among all blocks (viscous states)
     };
     std::vector<Block> m_blocks;

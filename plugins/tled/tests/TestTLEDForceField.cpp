@@ -414,13 +414,14 @@ TEST_CASE("TLEDForceField gives bitwise identical forces for any number of threa
 
 TEST_CASE("TLEDForceField renumbers a poorly numbered mesh internally: same forces, stresses and energy, compact buffers",
           "[TLEDForceField][determinism]") {
-    // the mixed grid of the determinism test, and the same mesh with its nodes numbered at random and
-    // its elements shuffled (as a mesh generator may write them): every block would then span all nodes
+    // the mixed grid of the determinism test, and the same mesh with its nodes numbered at random (among
+    // half as many again: a third of the new numbers are nodes no element uses) and its elements
+    // shuffled, as a mesh generator may write them: every block would then span all the nodes
     const Positions p = gridPoints(12, 12, 16, 0.01);
     const Tetrahedra t = gridTets(12, 12, 16, 0, 12);
     const Hexahedra h = gridHexes(12, 12, 16, 12, 16);
     std::mt19937 rng(7);
-    std::vector<int> perm(p.size());  // old node -> new node
+    std::vector<int> perm(p.size() + p.size() / 2);  // old node -> new node (the first p.size() entries)
     std::iota(perm.begin(), perm.end(), 0);
     std::shuffle(perm.begin(), perm.end(), rng);
     std::vector<size_t> tetOrder(t.size()), hexOrder(h.size());  // new element -> old element
@@ -428,7 +429,7 @@ TEST_CASE("TLEDForceField renumbers a poorly numbered mesh internally: same forc
     std::iota(hexOrder.begin(), hexOrder.end(), size_t(0));
     std::shuffle(tetOrder.begin(), tetOrder.end(), rng);
     std::shuffle(hexOrder.begin(), hexOrder.end(), rng);
-    Positions ps(p.size());
+    Positions ps(perm.size(), Vec3(1, 1, 1));  // the unused nodes anywhere
     for (size_t i = 0; i < p.size(); ++i) ps[static_cast<size_t>(perm[i])] = p[i];
     Tetrahedra ts;
     for (size_t e : tetOrder) ts.push_back({perm[t[e][0]], perm[t[e][1]], perm[t[e][2]], perm[t[e][3]]});
@@ -465,8 +466,27 @@ TEST_CASE("TLEDForceField renumbers a poorly numbered mesh internally: same forc
     };
     const Run ordered = run(p, t, h, nullptr);
     const Run scrambled = run(ps, ts, hs, &perm);
-    CAPTURE(ordered.rows, scrambled.rows, p.size());
+    // the ordered grid keeps its numbering: its blocks (2048 tetrahedra, 512 hexahedra, in input order)
+    // span their node ranges
+    size_t fileRows = 0;
+    auto addRanges = [&](const auto& elements, size_t blockSize) {
+        for (size_t c = 0; c < elements.size(); c += blockSize) {
+            int lo = 1 << 30, hi = -1;
+            for (size_t e = c; e < std::min(elements.size(), c + blockSize); ++e)
+                for (int v : elements[e]) lo = std::min(lo, v), hi = std::max(hi, v);
+            fileRows += static_cast<size_t>(hi - lo + 1);
+        }
+    };
+    addRanges(t, 2048);
+    addRanges(h, 512);
+    CAPTURE(ordered.rows, fileRows, scrambled.rows, p.size());
+    CHECK(ordered.rows == fileRows);
     CHECK(scrambled.rows < 3 * p.size());  // the file's order would need about 11 (blocks) times the node count
+    bool unusedFree = true;  // the nodes no element uses get no force
+    std::vector<char> isUsed(perm.size(), 0);
+    for (size_t i = 0; i < p.size(); ++i) isUsed[static_cast<size_t>(perm[i])] = 1;
+    for (size_t i = 0; i < perm.size(); ++i) unusedFree = unusedFree && (isUsed[i] || scrambled.f[i] == Vec3::Zero());
+    CHECK(unusedFree);
     double fmax = 0, fdiff = 0;
     for (size_t i = 0; i < p.size(); ++i) {
         fmax = std::max(fmax, ordered.f[i].norm());
@@ -496,7 +516,7 @@ TEST_CASE("TLEDForceField renumbers a poorly numbered mesh internally: same forc
     const Run two = run(ps, ts, hs, &perm);
     omp_set_num_threads(maxThreads);
     bool same = true;
-    for (size_t i = 0; i < p.size(); ++i) same = same && one.f[i] == two.f[i];
+    for (size_t i = 0; i < one.f.size(); ++i) same = same && one.f[i] == two.f[i];
     CHECK(same);
 }
 

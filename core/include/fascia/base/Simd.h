@@ -4,6 +4,7 @@
 /// padding) and structure-of-arrays batches of elements with in-register transposes
 /// (measured here: hardware gathers and masked scatters are slower, see docs/performance.md).
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <vector>
@@ -16,31 +17,60 @@
 
 namespace fascia::simd {
 
-/// 64-byte aligned storage for element and node arrays.
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#define FASCIA_HUGE_PAGES 1
+/// Arrays of this size and more (streamed once per step on large meshes) are mapped on their own,
+/// 2 MiB aligned, and marked for transparent huge pages (fewer TLB misses; docs/performance.md).
+constexpr size_t kHugeArray = size_t(4) << 20, kHugePage = size_t(2) << 20;
+/// bytes (a multiple of kHugePage) of fresh zeroed memory aligned to kHugePage, or null.
+inline void* mapHuge(size_t bytes) {
+    void* raw = mmap(nullptr, bytes + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) return nullptr;
+    char* r = static_cast<char*>(raw);
+    char* p = reinterpret_cast<char*>((reinterpret_cast<uintptr_t>(r) + kHugePage - 1) & ~(uintptr_t(kHugePage) - 1));
+    if (p > r) munmap(r, static_cast<size_t>(p - r));                        // the head before the alignment
+    if (p + bytes < r + bytes + kHugePage) munmap(p + bytes, static_cast<size_t>(r + kHugePage - p));  // the tail
+    madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without transparent huge pages it stays 4 KiB pages
+    return p;
+}
+#endif
+
+/// 64-byte aligned storage for element and node arrays (large ones in 2 MiB pages on Linux).
 template <class T>
 struct AlignedAllocator {
     using value_type = T;
     AlignedAllocator() = default;
     template <class U> AlignedAllocator(const AlignedAllocator<U>&) {}
+    static size_t bytesFor(size_t n) {
+        if (n > (~size_t(0) - 64) / sizeof(T)) throw std::bad_array_new_length();
+        const size_t bytes = ((n * sizeof(T) + 63) / 64) * 64;
+#ifdef FASCIA_HUGE_PAGES
+        if (bytes >= kHugeArray) return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+#endif
+        return bytes ? bytes : 64;
+    }
     T* allocate(size_t n) {
-        size_t bytes = ((n * sizeof(T) + 63) / 64) * 64;
-        size_t align = 64;
-#if defined(__linux__)
-        // large arrays (streamed once per step on big meshes) in 2 MiB pages where the system allows it
-        constexpr size_t kHuge = size_t(2) << 20;
-        if (bytes >= 2 * kHuge) {
-            align = kHuge;
-            bytes = (bytes + kHuge - 1) / kHuge * kHuge;
-        }
+        const size_t bytes = bytesFor(n);
+        void* p = nullptr;
+#ifdef FASCIA_HUGE_PAGES
+        if (bytes >= kHugeArray) p = mapHuge(bytes);
+        else
 #endif
-        void* p = std::aligned_alloc(align, bytes ? bytes : 64);
+            p = std::aligned_alloc(64, bytes);
         if (!p) throw std::bad_alloc();
-#if defined(__linux__)
-        if (align > 64) madvise(p, bytes, MADV_HUGEPAGE);
-#endif
         return static_cast<T*>(p);
     }
-    void deallocate(T* p, size_t) { std::free(p); }
+    void deallocate(T* p, size_t n) {
+        const size_t bytes = bytesFor(n);
+#ifdef FASCIA_HUGE_PAGES
+        if (bytes >= kHugeArray) {
+            munmap(p, bytes);
+            return;
+        }
+#endif
+        (void)bytes;
+        std::free(p);
+    }
     template <class U> bool operator==(const AlignedAllocator<U>&) const { return true; }
     template <class U> bool operator!=(const AlignedAllocator<U>&) const { return false; }
 };
