@@ -12,8 +12,8 @@ namespace fascia::meshio {
 /// stresses ...): one array per quantity over all cells, NaN in the cells of a force field that does
 /// not offer it (a quantity two force fields offer with different shapes gets an array per force
 /// field, "name_forceFieldName"). With two or more force fields a cell array "forceField" gives each
-/// cell's force field (0, 1 ... in scene order). Each file is written under a temporary name and renamed, so a run
-/// killed at any moment leaves only complete files (and the .pvd lists only those). The .pvd is
+/// cell's force field (0, 1 ... in scene order). Each file is written under a temporary name and
+/// renamed, so a run killed at any moment leaves only complete files (and the .pvd lists only those). The .pvd is
 /// rewritten after every file while the series is short; past 100 files at most once a second of
 /// wall time (a full rewrite per file would grow quadratically), and always at the end of the run.
 class VTKExporter : public core::BaseObserver {

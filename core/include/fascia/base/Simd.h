@@ -28,8 +28,8 @@ inline void* mapHuge(size_t bytes) {
     if (raw == MAP_FAILED) return nullptr;
     char* r = static_cast<char*>(raw);
     char* p = reinterpret_cast<char*>((reinterpret_cast<uintptr_t>(r) + kHugePage - 1) & ~(uintptr_t(kHugePage) - 1));
-    if (p > r) munmap(r, static_cast<size_t>(p - r));                        // the head before the alignment
-    if (p + bytes < r + bytes + kHugePage) munmap(p + bytes, static_cast<size_t>(r + kHugePage - p));  // the tail
+    if (p > r) munmap(r, static_cast<size_t>(p - r));             // the head before the alignment
+    munmap(p + bytes, static_cast<size_t>(r + kHugePage - p));     // the tail after the array (never empty)
     madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without transparent huge pages it stays 4 KiB pages
     return p;
 }
