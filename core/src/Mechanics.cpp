@@ -108,19 +108,9 @@ void MechanicalGroup::checkFinite(double t) {
     const Positions& x = state->x();
     const Positions& v = state->v();
     const long n = static_cast<long>(std::min(x.size(), v.size()));
-    const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
     const double* xp = flat(x);
     const double* vp = flat(v);
-    const auto chunkProbe = [&](long c) {
-        return finiteProbe(xp + 3 * c * kNodeChunk, vp + 3 * c * kNodeChunk, 3 * (std::min(n, (c + 1) * kNodeChunk) - c * kNodeChunk));
-    };
-    double probe = 0;
-    if (n > kParallelNodes) {
-#pragma omp parallel for schedule(static) reduction(+ : probe)
-        for (long c = 0; c < chunks; ++c) probe += chunkProbe(c);
-    } else {
-        for (long c = 0; c < chunks; ++c) probe += chunkProbe(c);
-    }
+    const double probe = sumNodeRange(n, [&](long lo, long hi) { return finiteProbe(xp + 3 * lo, vp + 3 * lo, 3 * (hi - lo)); });
     if (std::isfinite(probe) && x.size() == v.size()) return;
     const long bad = firstNonFinite(state->x());
     const long badV = firstNonFinite(state->v());

@@ -126,6 +126,22 @@ inline void forEachNodeRange(long n, Body&& body) {
     }
 }
 
+/// The sum of body(lo, hi) over the same chunks as forEachNodeRange, on the OpenMP threads above
+/// kParallelNodes (a reduction: for checks over every node, not for results that must be bitwise
+/// reproducible).
+template <class Body>
+inline double sumNodeRange(long n, Body&& body) {
+    const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
+    double sum = 0;
+    if (n > kParallelNodes) {
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+        for (long c = 0; c < chunks; ++c) sum += body(c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
+    } else {
+        for (long c = 0; c < chunks; ++c) sum += body(c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
+    }
+    return sum;
+}
+
 /// Runs body(i) for i in [0, n), chunk by chunk through forEachNodeRange (on the OpenMP threads
 /// above kParallelNodes; below it no parallel region at all: even an inactive one costs about 0.3 us).
 template <class Body>
