@@ -26,6 +26,7 @@ std::string scene(const lawref::LawSpec& first, const lawref::LawSpec& second, c
            "    <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"tetrahedra6\"/>\n"
            "    <MechanicalObject name=\"mo\"/>\n"
            "    <LumpedMass density=\"1000\"/>\n"
+           "    <SemiImplicitEuler/>\n"
            "    <" + first.type + " name=\"first\"" + attributes(first) + "/>\n"
            "    <" + second.type + " name=\"second\"" + attributes(second) + "/>\n"
            "    <HEMLForceField name=\"ff\"" + ffAttributes + "/>\n"

@@ -178,48 +178,60 @@ TEST_CASE("TLEDForceField reproduces the instantaneous pure-shear stresses of Fi
     }
 }
 
-TEST_CASE("TLEDForceField reproduces the viscoelastic pure-shear stresses of Fig. 2 within 0.1 %",
+TEST_CASE("TLEDForceField reproduces the viscoelastic pure-shear stresses of Fig. 2 to the first-order error of backward Euler",
           "[TLEDForceField][verification][viscoelastic]") {
     const double r = GENERATE(2.5, 0.25, 0.025);
     const bool hex = GENERATE(true, false);
     // backward Euler (TLED eq. (30)) is first order: dt small against tau and the loading time
     const double dt = r > 1 ? 1e-4 : 1e-3;
     CAPTURE(r, hex, dt);
-    ShearBench sb(hex, true);
-    Bench& b = sb.b;
-    b.ff->dtChanged(dt);
-    const long nEnd = std::lround(0.5 / r / dt);  // g up to 0.5
-    const long every = nEnd / 10;
-    double maxErr[4] = {0, 0, 0, 0}, maxRef[4] = {0, 0, 0, 0};
-    int checked = 0;
-    for (long n = 0; n <= nEnd; ++n) {
-        const double t = n * dt;
-        b.deform(shear(r * t));
-        b.forces(t);  // advances the viscous history (one step per time)
-        if (n == 0 || n % every) continue;
-        std::vector<double> S;
-        b.ff->stresses(*b.state, t, S);
-        const ShearStress app = appendixA(r, t, kMu, kEta, kAlpha, kTau);
-        const ShearStress own = ownClosedForm(r, t, kMu, kEta, kAlpha, kTau);
-        const double ref[4] = {app.S11, own.S22, own.S33, app.S12};
-        const int idx[4] = {0, 1, 2, 3};  // S11 S22 S33 S12 -> Voigt xx yy zz xy
-        for (size_t e = 0; e < b.ff->elementCount(); ++e)
-            for (int c = 0; c < 4; ++c) {
-                const double v = S[6 * e + static_cast<size_t>(idx[c])];
-                // each value within 0.1 % of the analytic one
-                CAPTURE(t, c, v, ref[c]);
-                CHECK(std::abs(v - ref[c]) < 1e-3 * std::abs(ref[c]));
-                maxErr[c] = std::max(maxErr[c], std::abs(v - ref[c]));
-                maxRef[c] = std::max(maxRef[c], std::abs(ref[c]));
-            }
-        ++checked;
-    }
-    CHECK(checked == 10);
-    // and the first-order error is visible but small relative to each curve's range
+    struct Errors {
+        double worstRel[4] = {0, 0, 0, 0};  // max over the samples of |v - ref| / |ref|
+        double maxErr[4] = {0, 0, 0, 0}, maxRef[4] = {0, 0, 0, 0};
+        int checked = 0;
+    };
+    auto run = [&](double step) {
+        ShearBench sb(hex, true);
+        Bench& b = sb.b;
+        b.ff->dtChanged(step);
+        Errors out;
+        const long nEnd = std::lround(0.5 / r / step);  // g up to 0.5
+        const long every = nEnd / 10;
+        for (long n = 0; n <= nEnd; ++n) {
+            const double t = n * step;
+            b.deform(shear(r * t));
+            b.forces(t);  // advances the viscous history (one step per time)
+            if (n == 0 || n % every) continue;
+            std::vector<double> S;
+            b.ff->stresses(*b.state, t, S);
+            const ShearStress app = appendixA(r, t, kMu, kEta, kAlpha, kTau);
+            const ShearStress own = ownClosedForm(r, t, kMu, kEta, kAlpha, kTau);
+            const double ref[4] = {app.S11, own.S22, own.S33, app.S12};
+            for (size_t e = 0; e < b.ff->elementCount(); ++e)
+                for (int c = 0; c < 4; ++c) {
+                    const double v = S[6 * e + static_cast<size_t>(c)];  // S11 S22 S33 S12 -> Voigt xx yy zz xy
+                    out.worstRel[c] = std::max(out.worstRel[c], std::abs(v - ref[c]) / std::abs(ref[c]));
+                    out.maxErr[c] = std::max(out.maxErr[c], std::abs(v - ref[c]));
+                    out.maxRef[c] = std::max(out.maxRef[c], std::abs(ref[c]));
+                }
+            ++out.checked;
+        }
+        return out;
+    };
+    const Errors e = run(dt), half = run(dt / 2);
+    CHECK(e.checked == 10);
+    // Bounds at 1.5 times the backward-Euler error measured at these steps (worst sample relative to
+    // its own value: 4.2e-5, 3.6e-4, 8.8e-5; worst error relative to the curve's range: 3.7e-5,
+    // 1.06e-4, 2.6e-6 at r = 2.5, 0.25, 0.025); the error is the method's, not a slip: it halves
+    // with dt (first order) and does not vanish.
+    const double relBound = r > 1 ? 6.5e-5 : r > 0.1 ? 5.5e-4 : 1.35e-4;
+    const double rangeBound = r > 1 ? 5.5e-5 : r > 0.1 ? 1.6e-4 : 4e-6;
     for (int c = 0; c < 4; ++c) {
-        CAPTURE(c, maxErr[c], maxRef[c]);
-        CHECK(maxErr[c] < 5e-4 * maxRef[c]);
-        CHECK(maxErr[c] > 1e-9 * maxRef[c]);  // not the exact solution: it is a time integration
+        CAPTURE(c, e.worstRel[c], e.maxErr[c], e.maxRef[c], half.maxErr[c]);
+        CHECK(e.worstRel[c] < relBound);
+        CHECK(e.maxErr[c] < rangeBound * e.maxRef[c]);
+        CHECK(e.maxErr[c] / half.maxErr[c] == Approx(2.0).epsilon(0.1));
+        CHECK(e.maxErr[c] > 1e-9 * e.maxRef[c]);
     }
 }
 
@@ -327,12 +339,18 @@ TEST_CASE("TLEDForceField reproduces the homogeneous compression-relaxation resp
     REQUIRE(mp.Pzz.size() == 3);
     for (size_t i = 0; i < 3; ++i) {
         CAPTURE(fe.t[i], fe.Pzz[i], mp.Pzz[i], cs.PBE[i], cs.P[i]);
-        CHECK(fe.Pzz[i] == Approx(mp.Pzz[i]).epsilon(1e-9));      // element == own computation
-        CHECK(fe.Pzz[i] == Approx(cs.PBE[i]).epsilon(2e-8 * 1e3));  // same scheme as the table's TLED-BE column (7 digits printed)
-        CHECK(fe.Pzz[i] == Approx(cs.P[i]).epsilon(1e-3));         // within 0.1 % of the exact hereditary integral
+        CHECK(fe.Pzz[i] == Approx(mp.Pzz[i]).epsilon(1e-9));  // element == own computation
+        // same scheme as the table's TLED-BE column, printed to 4 decimals (measured differences
+        // below 5e-5 Pa): one unit of the last printed digit
+        CHECK(fe.Pzz[i] == Approx(cs.PBE[i]).margin(1e-4));
+        // the exact hereditary integral, to the backward-Euler error at dt = 1e-3, which decays after
+        // the ramp (measured at most 2.5e-4, 4.4e-5, 1.9e-6 relative at 0.5, 1 and 5 s)
+        const double beError[3] = {3e-4, 6e-5, 3e-6};
+        CHECK(fe.Pzz[i] == Approx(cs.P[i]).epsilon(beError[i]));
     }
-    CHECK(fe.lx[2] == Approx(cs.lx5).epsilon(1e-6));
-    if (ci == 3) CHECK(fe.ly[2] == Approx(1.29892845).epsilon(1e-6));  // fibres along x stiffen x: lx != ly
+    // lateral stretches at 5 s, printed to 8 decimals (measured differences below 1.7e-8)
+    CHECK(fe.lx[2] == Approx(cs.lx5).margin(3e-8));
+    if (ci == 3) CHECK(fe.ly[2] == Approx(1.29892845).margin(3e-8));  // fibres along x stiffen x: lx != ly
     // relaxation: the held compression loses stress (alpha_inf = 0.5 of the isochoric part)
     if (cs.alpha > 0) CHECK(std::abs(fe.Pzz[2]) < 0.65 * std::abs(fe.Pzz[0]));
 }
