@@ -58,7 +58,7 @@ Probe probe(core::Simulation& sim, const Mat3& A) {
 
 } // namespace
 
-TEST_CASE("HEML material=\"@second\" uses the linked material, not the first one in the node", "[HEMLForceField]") {
+TEST_CASE("HEML with a material link to the second of two materials uses it, not the first one in the node", "[HEMLForceField]") {
     lawref::LawSpec first = lawref::lawNamed("NeoHookean");
     lawref::LawSpec second = lawref::lawNamed("TransverselyIsotropic");
     second.mu = 1500;
