@@ -63,7 +63,9 @@ struct HolzapfelGasserOgdenLaw {
 /// Parameters: mu, k1, k2, dispersion (FEBio's "kappa"), bulkModulus (FEBio's "k"), direction
 /// (a0) and, for a second family, direction2 (b0); FEBio's fibre angle gamma is given here as the
 /// two directions themselves. Force fields may take the directions per element from mesh cell
-/// arrays instead. Stress-free at rest; small-strain shear modulus mu, bulk modulus K.
+/// arrays instead; the second family exists only when direction2 is set here (a mesh array of
+/// second directions alone does not switch it on). Stress-free at rest; small-strain shear modulus
+/// mu, bulk modulus K.
 /// The stable time step (from waveSpeed) is a rest value: the fibres stiffen exponentially, so
 /// large fibre strains need a smaller step than the rest estimate.
 class HolzapfelGasserOgden : public Material<HolzapfelGasserOgdenLaw> {
