@@ -103,7 +103,10 @@ TEST_CASE("TLEDForceField element, material and Prony errors are located at its 
     };
     CHECK_THAT(tled("mesh=\"@grid.mesh\" tetrahedra=\"@grid.tetrahedra\""),
                Contains(at + "both mesh and tetrahedra/hexahedra are given: give the elements one way"));
-    CHECK_THAT(tled("fibreArray=\"fibres\""), Contains(at + "fibre arrays come from a mesh's cell arrays: give mesh=\"@loader.mesh\""));
+    CHECK_THAT(tled("tetrahedra=\"@grid.tetrahedra\" fibreArray=\"fibres\""),
+               Contains(at + "fibre arrays come from a mesh's cell arrays: give mesh=\"@loader.mesh\""));
+    CHECK_THAT(tled("fibreArray=\"fibres\""), Contains(at + "fibreArray = \"fibres\": the mesh has no such cell array") &&
+                                                 Contains("scene.xml:6: note: the mesh has no cell arrays"));
     CHECK_THAT(tled("tetrahedra=\"0 1 2 9\""), Contains(at + "elements use node 9 but the state 'state' has 8 nodes"));
     CHECK_THAT(tled("", ""), Contains(at + "no material for the tetrahedra of group 0: put a material in the node, set "
                                            "material=\"@...\", or list the group in groupMaterials"));
