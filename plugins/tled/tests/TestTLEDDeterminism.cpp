@@ -110,18 +110,19 @@ TEST_CASE("TLEDForceField forces, energy and a short trajectory are bitwise iden
     mesh.cellArrays["fibres2"] = bb;
     const int saved = omp_get_max_threads();
     const Run one = runPath(path, mesh, 1);
-    const Run two = runPath(path, mesh, 2);
-    const Run three = runPath(path, mesh, 3);
-    omp_set_num_threads(saved);
     CAPTURE(path, one.blocks);
     REQUIRE(one.blocks >= 24);
     double scale = 0;
     for (const Vec3& v : one.f1) scale = std::max(scale, v.norm());
     REQUIRE(scale > 0);
-    CHECK(bitwiseEqual(one.f1, two.f1));
-    CHECK(bitwiseEqual(one.f1, three.f1));
-    CHECK(bitwiseEqual(one.x, two.x));
-    CHECK(bitwiseEqual(one.x, three.x));
-    CHECK(std::memcmp(&one.energy, &two.energy, sizeof(double)) == 0);
-    CHECK(std::memcmp(&one.energy, &three.energy, sizeof(double)) == 0);
+    // each multi-threaded run three times: the order in which threads take the blocks varies from
+    // run to run, and a single run can happen to repeat the serial order
+    for (int threads : {2, 3, 2, 3, 2, 3}) {
+        const Run other = runPath(path, mesh, threads);
+        CAPTURE(threads);
+        CHECK(bitwiseEqual(one.f1, other.f1));
+        CHECK(bitwiseEqual(one.x, other.x));
+        CHECK(std::memcmp(&one.energy, &other.energy, sizeof(double)) == 0);
+    }
+    omp_set_num_threads(saved);
 }
