@@ -1,31 +1,37 @@
 #include "CorotationalTetForceField.h"
+
+#include "fascia/elements/Geometry.h"
 #include "fascia/scene/Node.h"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace example {
 
 using fascia::Mat3;
 using fascia::Vec3;
+namespace elements = fascia::elements;
 
 void CorotationalTetForceField::init() {
     auto* topo = node()->findInContext<fascia::core::BaseTopology>();
     auto* state = node()->findInContext<fascia::core::BaseMechanicalState>();
     if (!topo || !state) fail("needs a mesh source (MeshLoader, GridMesh) and a MechanicalObject in its context");
-    if (topo->meshData().points.size() != state->size())
-        fail("the mesh source has " + std::to_string(topo->meshData().points.size()) + " points, the state " +
-             std::to_string(state->size()) + " nodes");
     m_tets = topo->meshData().tetrahedra;
     if (m_tets.empty()) fail("the mesh has no tetrahedra");
-    const double E = m_E.get(), nu = m_nu.get();
-    m_mu = E / (2 * (1 + nu));
-    m_lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
     const auto& X = state->x0();
-    m_DmInv.resize(m_tets.size());
-    m_vol.resize(m_tets.size());
-    m_minHeight = INFINITY;
-    for (size_t e = 0; e < m_tets.size(); ++e) {
+    for (const auto& t : m_tets)
+        for (int v : t)
+            if (v < 0 || size_t(v) >= X.size()) fail("a tetrahedron uses node " + std::to_string(v) + " of " + std::to_string(X.size()));
+    m_assembly.init(m_tets, X.size());  // sorts the elements by lowest node, fixed blocks
+    m_mu = m_E.get() / (2 * (1 + m_nu.get()));
+    m_lambda = m_E.get() * m_nu.get() / ((1 + m_nu.get()) * (1 - 2 * m_nu.get()));
+    const size_t n = m_tets.size();
+    m_DmInv.resize(n);
+    m_vol.resize(n);
+    m_altitude.resize(n);
+    for (size_t e = 0; e < n; ++e) {
         const auto& t = m_tets[e];
         Mat3 Dm;
         Dm << X[t[1]] - X[t[0]], X[t[2]] - X[t[0]], X[t[3]] - X[t[0]];
@@ -33,13 +39,7 @@ void CorotationalTetForceField::init() {
         if (!(det > 0)) fail("element " + std::to_string(e) + " is inverted or flat at rest");
         m_DmInv[e] = Dm.inverse();
         m_vol[e] = det / 6;
-        // smallest height = 3 Vol / largest face area
-        double area = 0;
-        for (int k = 0; k < 4; ++k) {
-            const Vec3& a = X[t[(k + 1) % 4]];
-            area = std::max(area, 0.5 * (X[t[(k + 2) % 4]] - a).cross(X[t[(k + 3) % 4]] - a).norm());
-        }
-        m_minHeight = std::min(m_minHeight, 3 * m_vol[e] / area);
+        m_altitude[e] = elements::tetAltitude(X[t[0]], X[t[1]], X[t[2]], X[t[3]], m_vol[e]);
     }
 }
 
@@ -63,17 +63,15 @@ double CorotationalTetForceField::elementStress(const fascia::Positions& x, size
 }
 
 void CorotationalTetForceField::addForce(fascia::core::BaseMechanicalState& s, fascia::Positions& f, double) {
-    const auto& x = s.x();
-    for (size_t e = 0; e < m_tets.size(); ++e) {
+    m_assembly.addForces(m_tets, f.data()->data(), [&](size_t e, Vec3 (&fe)[4]) {
         Mat3 P;
-        elementStress(x, e, P);
+        elementStress(s.x(), e, P);
         const Mat3 H = -m_vol[e] * P * m_DmInv[e].transpose();  // forces on nodes 1..3
-        const auto& t = m_tets[e];
         for (int k = 0; k < 3; ++k) {
-            f[t[k + 1]] += H.col(k);
-            f[t[0]] -= H.col(k);
+            fe[k + 1] = H.col(k);
+            fe[0] -= H.col(k);
         }
-    }
+    });
 }
 
 double CorotationalTetForceField::potentialEnergy(const fascia::core::BaseMechanicalState& s) const {
@@ -85,9 +83,12 @@ double CorotationalTetForceField::potentialEnergy(const fascia::core::BaseMechan
 
 double CorotationalTetForceField::stableTimeStep(const fascia::core::BaseMechanicalState&) const {
     auto* mass = node()->findInContext<fascia::core::BaseMass>();
-    const double rho = mass ? mass->density() : NAN;
-    if (!(rho > 0)) return INFINITY;
-    return m_minHeight / std::sqrt((m_lambda + 2 * m_mu) / rho);
+    if (!mass) return INFINITY;
+    const double rho = elements::densityFor(*mass, std::accumulate(m_vol.begin(), m_vol.end(), 0.0));
+    const double c = std::sqrt((m_lambda + 2 * m_mu) / rho);  // dilatational wave speed
+    double L = INFINITY;
+    for (double h : m_altitude) L = std::min(L, h);
+    return rho > 0 ? L / c : INFINITY;
 }
 
 } // namespace example

@@ -15,10 +15,10 @@ namespace fascia::heml {
 using simd::DVec;
 using simd::IVec;
 
-/// Elements per chunk of the element loop (two AVX-512 vectors of doubles, PERFORMANCE.md lesson 3).
+/// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lessons: short passes over batches).
 constexpr int kLanes = 16;
 /// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
-/// the mesh only, never on the thread count (DESIGN.md principle 5).
+/// the mesh only, never on the thread count (docs/design.md, determinism).
 constexpr size_t kBlockSize = 1024;
 
 /// Edge k joins local nodes kEdgeA[k] -> kEdgeB[k]: v1 = x1 - x0, v2 = x2 - x0, v3 = x3 - x0,
@@ -60,7 +60,7 @@ struct HEMLData {
     /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
     /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
     /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
-    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (PERFORMANCE.md: bytes per element).
+    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lessons: bytes per element).
     DVec G[6];
     DVec w4[3], w6[3];     ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
     DVec kk[6], len0[6];   ///< mass-spring mode: stiffness share and rest length per edge
@@ -195,7 +195,7 @@ double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) 
 
     for (size_t e0 = b.begin; e0 < b.end; e0 += kLanes) {
         // gather the four nodes of each element (node rows padded to 4 doubles, in-register
-        // transposes: PERFORMANCE.md lesson 2)
+        // transposes: docs/performance.md, lessons: SIMD gather)
         for (int j = 0; j < kLanes; j += 4)
             for (int a = 0; a < 4; ++a)
                 simd::gather4(xin, d.node[a].data() + e0 + j, 1, &c.px[a][0][j], &c.px[a][1][j], &c.px[a][2][j]);

@@ -1,7 +1,7 @@
 #pragma once
 // Scenes built in code for the HEMLForceField tests (the mechanics plugin is not needed): a bare
 // mechanical state and mass, jittered cube meshes, every built-in material.
-#include "HEMLForceField.h"
+#include "fascia/heml/HEMLForceField.h"
 #include "fascia/materials/CompressibleMooneyRivlin.h"
 #include "fascia/materials/CompressibleNeoHookean.h"
 #include "fascia/materials/IncompressibleMooneyRivlin.h"

@@ -2,7 +2,7 @@
 // mass-spring degenerate case (HEML section 5.3), flat/inverted elements (section 4.4),
 // determinism across thread counts, viscoelasticity (section 3.5), parameters.
 #include "HEMLTestSupport.h"
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 #include "fascia/materials/Conformance.h"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
 #pragma once
 // Helpers for the TLEDForceField tests: a bare mechanical state and mass, small structured meshes,
 // materials built in code, and an independent (Eigen) evaluation of S = 2 dW/dC.
-#include "TLEDForceField.h"
-#include "ViscoelasticProny.h"
+#include "fascia/tled/TLEDForceField.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include "fascia/materials/Conformance.h"
 #include "fascia/materials/CompressibleMooneyRivlin.h"

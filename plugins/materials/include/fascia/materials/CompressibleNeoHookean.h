@@ -9,6 +9,8 @@ namespace fascia::materials {
 /// (2 C1 - mu) I at rest (warned). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
 class CompressibleNeoHookean : public Material<CompressibleNeoHookeanLaw> {
 public:
+    static constexpr const char* kName = "CompressibleNeoHookean";
+    static constexpr const char* kDescription = "compressible neo-Hookean C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (HEML eq. (26))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -10,6 +10,8 @@ namespace fascia::materials {
 /// orthogonal, warned otherwise). Stress-free at rest.
 class Orthotropic : public Material<OrthotropicLaw> {
 public:
+    static constexpr const char* kName = "Orthotropic";
+    static constexpr const char* kDescription = "neo-Hookean plus two fibre families eta/4 (I4bar - 1)^2 + eta2/4 (I6bar - 1)^2";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

@@ -8,6 +8,8 @@ namespace fascia::materials {
 /// strong compression (HEML section 4.2). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
 class StVenantKirchhoff : public Material<StVenantKirchhoffLaw> {
 public:
+    static constexpr const char* kName = "StVenantKirchhoff";
+    static constexpr const char* kDescription = "Saint Venant-Kirchhoff material, lambda/2 (tr E)^2 + mu tr(E^2) (HEML Table 3)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }
