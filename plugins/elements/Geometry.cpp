@@ -67,7 +67,7 @@ void cof3(const double m[9], double c[9]) {
 }
 } // namespace
 
-void hexUniformStrain(const Vec3 (&P)[8], double& V, double dN[24]) {
+void hexUniformStrain(const Vec3 (&P)[8], double& V, double dN[24], double& sumDN2) {
     // (1/V) int dN/dX dV = (1/V) int cof(J) dN/dxi dxi and V = int det J dxi, 2x2x2 Gauss points
     const double gp = 1.0 / std::sqrt(3.0);
     V = 0;
@@ -91,8 +91,12 @@ void hexUniformStrain(const Vec3 (&P)[8], double& V, double dN[24]) {
         for (int a = 0; a < 8; ++a)
             for (int i = 0; i < 3; ++i) Bs[a][i] += cj[3 * i] * dxi[a][0] + cj[3 * i + 1] * dxi[a][1] + cj[3 * i + 2] * dxi[a][2];
     }
+    sumDN2 = 0;
     for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < 3; ++i) dN[3 * a + i] = Bs[a][i] / V;
+        for (int i = 0; i < 3; ++i) {
+            dN[3 * a + i] = Bs[a][i] / V;
+            sumDN2 += dN[3 * a + i] * dN[3 * a + i];
+        }
 }
 
 double densityFor(const core::BaseMass& mass, double restVolume) {

@@ -207,8 +207,8 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, d
         const auto& h = su.hexes[e];
         Vec3 P[8];
         for (int a = 0; a < 8; ++a) P[a] = su.X[h[a]];
-        double V, dN[24];
-        elements::hexUniformStrain(P, V, dN);
+        double V, dN[24], sumB2;
+        elements::hexUniformStrain(P, V, dN, sumB2);
         double longest = 0;
         for (int a = 0; a < 8; ++a)
             for (int b2 = a + 1; b2 < 8; ++b2) longest = std::max(longest, (P[a] - P[b2]).norm());
@@ -217,8 +217,6 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, d
             for (int v : h) nodes += " " + std::to_string(v);
             ff.fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + fmt(V) + " m^3)");
         }
-        double sumB2 = 0;
-        for (int i = 0; i < 24; ++i) sumB2 += dN[i] * dN[i];
         // hourglass control: gamma_q = h_q - (c_q . dN/dX), c_q = sum_a h_qa X_a; the loop needs c_q only
         double hc[12] = {};
         for (int q = 0; q < 4; ++q)

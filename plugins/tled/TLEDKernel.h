@@ -251,23 +251,6 @@ FASCIA_INLINE void addEnergy(const Batch<NN>& s, int n, const ElementSet<NN>& es
     }
 }
 
-/// Hexahedra: K sum_q h_qa h_q per component j and node a, the pair sums of hourglassModes reversed.
-FASCIA_INLINE void hourglassForces(const Batch<8>& s, int k, double K, double r[3][8]) {
-#pragma GCC unroll 3
-    for (int j = 0; j < 3; ++j) {
-        const double g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
-        const double p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
-        r[j][0] = p + sm;
-        r[j][1] = sp - p;
-        r[j][2] = m - sp;
-        r[j][3] = -m - sm;
-        r[j][4] = m - sm;
-        r[j][5] = -m - sp;
-        r[j][6] = p + sp;
-        r[j][7] = sm - p;
-    }
-}
-
 /// f_a = -V P dN_a/dX (TLED eq. (1)-(3)); hexahedra with hourglass control:
 /// -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q, so
 /// f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q.
@@ -294,8 +277,20 @@ FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, si
         } else {
             const NodeRows<kBatch> hgC{G + ElementSet<NN>::kHgRow * kBatch};
             const double K = es.hgK[e];
-            double r[3][8];
-            hourglassForces(s, k, K, r);
+            double r[3][8];  // K sum_q h_qa h_q per component, the pair sums of hourglassModes reversed
+#pragma GCC unroll 3
+            for (int j = 0; j < 3; ++j) {
+                const double g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
+                const double p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
+                r[j][0] = p + sm;
+                r[j][1] = sp - p;
+                r[j][2] = m - sp;
+                r[j][3] = -m - sm;
+                r[j][4] = m - sm;
+                r[j][5] = -m - sp;
+                r[j][6] = p + sp;
+                r[j][7] = sm - p;
+            }
 #pragma GCC unroll 4
             for (int q = 0; q < 4; ++q) {
                 const double c0 = hgC.at(q, 0, k), c1 = hgC.at(q, 1, k), c2 = hgC.at(q, 2, k);

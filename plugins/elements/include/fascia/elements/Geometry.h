@@ -22,8 +22,8 @@ double hexCharacteristicLength(const Vec3 (&p)[8], double V);
 
 /// Uniform-strain (Flanagan-Belytschko 1981) data of an 8-node hexahedron (VTK order) by 2x2x2
 /// Gauss quadrature, exact for trilinear geometry: the signed volume V and the volume averages
-/// dN[3 a + i] = (1/V) int dN_a/dX_i dV.
-void hexUniformStrain(const Vec3 (&p)[8], double& V, double dN[24]);
+/// dN[3 a + i] = (1/V) int dN_a/dX_i dV, and sumDN2 = sum_a |dN_a/dX|^2 (for the hourglass stiffness).
+void hexUniformStrain(const Vec3 (&p)[8], double& V, double dN[24], double& sumDN2);
 /// Natural coordinates of the 8 nodes of a hexahedron, VTK order.
 extern const double kHexXi[8][3];
 /// Hourglass base vectors xi eta, eta zeta, zeta xi, xi eta zeta at the nodes (Flanagan-Belytschko).
