@@ -1,5 +1,6 @@
 #pragma once
 #include "fascia/elements/ElementAssembly.h"
+#include "fascia/elements/Geometry.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <vector>
@@ -28,8 +29,7 @@ private:
     /// P and W of one element at the given positions.
     double elementStress(const fascia::Positions& x, size_t e, fascia::Mat3& P) const;
     fascia::Tetrahedra m_tets;              ///< sorted by lowest node (ElementAssembly::init)
-    std::vector<fascia::Mat3> m_DmInv;      ///< inverse rest edge matrix
-    std::vector<double> m_vol, m_altitude;
+    fascia::elements::TetRest m_rest;       ///< Dm^-1, volumes and altitudes at rest
     fascia::elements::ElementAssembly m_assembly;  ///< fixed blocks of elements, one node buffer each
     double m_mu = 0, m_lambda = 0;
 };

@@ -99,6 +99,25 @@ void hexUniformStrain(const Vec3 (&P)[8], double& V, double dN[24], double& sumD
         }
 }
 
+TetRest tetRest(const core::Component& owner, const Positions& X, const Tetrahedra& tets) {
+    TetRest r;
+    for (size_t e = 0; e < tets.size(); ++e) {
+        const auto& t = tets[e];
+        for (int v : t)
+            if (v < 0 || size_t(v) >= X.size())
+                owner.fail("tetrahedron " + std::to_string(e) + " uses node " + std::to_string(v) + " but there are " +
+                           std::to_string(X.size()) + " nodes");
+        Mat3 Dm;
+        Dm << X[t[1]] - X[t[0]], X[t[2]] - X[t[0]], X[t[3]] - X[t[0]];
+        const double det = Dm.determinant();
+        if (!(det > 0)) owner.fail("tetrahedron " + std::to_string(e) + " is inverted or flat at rest");
+        r.DmInv.push_back(Dm.inverse());
+        r.volume.push_back(det / 6);
+        r.altitude.push_back(tetAltitude(X[t[0]], X[t[1]], X[t[2]], X[t[3]], det / 6));
+    }
+    return r;
+}
+
 double densityFor(const core::BaseMass& mass, double restVolume) {
     double rho = mass.density();
     if (std::isfinite(rho)) return rho;

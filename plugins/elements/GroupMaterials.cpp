@@ -21,12 +21,14 @@ namespace {
 
 const char* kForm = "give pairs of a group (tag number or name) and a material path, e.g. \"1 @liver 2 @vessel\"";
 
+/// A material path with or without its leading '@' ("@liver" or "liver").
+std::string pathOf(const std::string& raw) { return !raw.empty() && raw[0] == '@' ? raw.substr(1) : raw; }
+
 /// The material a pair names; fails located at the parameter.
 BaseMaterial* resolve(const core::Component& owner, const core::Param<GroupMaterialList>& p, const std::string& key,
                       const std::string& raw) {
-    if (raw.size() < 2 || raw[0] != '@')
-        owner.fail(p, "'" + raw + "' (for group " + key + ") should be a material path starting with '@': " + kForm);
-    const std::string path = raw.substr(1);
+    const std::string path = pathOf(raw);
+    if (path.empty()) owner.fail(p, "'" + raw + "' (for group " + key + ") is not a material path: " + kForm);
     core::Component* c = owner.node() ? owner.node()->resolveComponent(path) : nullptr;
     if (!c)
         owner.fail(p, "groupMaterials: no component '" + raw + "' for group " + key + " (no component '" + path +
@@ -71,8 +73,8 @@ std::vector<BaseMaterial*> listedMaterials(const core::Component& owner, const c
     std::vector<BaseMaterial*> out;
     if (!owner.node()) return out;
     for (const auto& [key, raw] : groups.get().pairs)
-        if (raw.size() > 1 && raw[0] == '@')
-            if (auto* m = dynamic_cast<BaseMaterial*>(owner.node()->resolveComponent(raw.substr(1)))) out.push_back(m);
+        if (!pathOf(raw).empty())
+            if (auto* m = dynamic_cast<BaseMaterial*>(owner.node()->resolveComponent(pathOf(raw)))) out.push_back(m);
     return out;
 }
 

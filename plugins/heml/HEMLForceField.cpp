@@ -177,6 +177,68 @@ void HEMLForceField::init() {
     precompute(rest);
 }
 
+namespace {
+
+/// The node rows of the blocks and the per-node lists of rows for the ordered sum.
+void buildNodeRows(HEMLData& d, size_t n) {
+    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
+    // to them; then, per node, its rows in block order for the reduction
+    d.rowInternal.clear();
+    std::vector<int>& rowInternal = d.rowInternal;
+    std::vector<int> local(n, -1);
+    for (auto& b : d.blocks) {
+        b.rowBegin = rowInternal.size();
+        std::vector<int> nodes;
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            local[nodes[i]] = int(i);
+            rowInternal.push_back(nodes[i]);
+        }
+        b.rowEnd = rowInternal.size();
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
+    }
+    const size_t rows = rowInternal.size();
+    d.rowNode.resize(rows);
+    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
+    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
+    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
+    d.xin.assign(4 * n, 0.0);
+    d.xrow.assign(4 * rows, 0.0);
+    d.buf.assign(4 * rows, 0.0);
+    d.nodeRowStart.assign(n + 1, 0);
+    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
+    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
+    d.nodeRows.assign(rows, 0);
+    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
+    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
+    d.blockEnergy.assign(d.blocks.size(), 0.0);
+
+}
+
+/// The viscoelastic state of eq. (18)-(20), one value per slot, term and relaxed component.
+void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_t S) {
+    // viscoelastic state
+    d.nTerms = 0;
+    d.nComp = 0;
+    d.Yprev.clear();
+    d.Ycur.clear();
+    d.yComputed = false;
+    if (visco) {
+        d.nTerms = int(visco->termCount());
+        d.relaxIso = visco->relaxesIsochoric();
+        d.relaxVol = visco->relaxesVolumetric();
+        d.nComp = d.relaxIso ? 7 : 1;
+        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
+        d.Ycur = d.Yprev;
+    }
+}
+
+} // namespace
+
 void HEMLForceField::precompute(const Positions& rest) {
     HEMLData& d = *m_data;
     const size_t n = rest.size(), ne = m_tets.size();
@@ -314,56 +376,8 @@ void HEMLForceField::precompute(const Positions& rest) {
         }
     }
 
-    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
-    // to them; then, per node, its rows in block order for the reduction
-    d.rowInternal.clear();
-    std::vector<int>& rowInternal = d.rowInternal;
-    std::vector<int> local(n, -1);
-    for (auto& b : d.blocks) {
-        b.rowBegin = rowInternal.size();
-        std::vector<int> nodes;
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-        for (size_t i = 0; i < nodes.size(); ++i) {
-            local[nodes[i]] = int(i);
-            rowInternal.push_back(nodes[i]);
-        }
-        b.rowEnd = rowInternal.size();
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
-    }
-    const size_t rows = rowInternal.size();
-    d.rowNode.resize(rows);
-    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
-    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
-    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
-    d.xin.assign(4 * n, 0.0);
-    d.xrow.assign(4 * rows, 0.0);
-    d.buf.assign(4 * rows, 0.0);
-    d.nodeRowStart.assign(n + 1, 0);
-    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
-    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
-    d.nodeRows.assign(rows, 0);
-    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
-    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
-    d.blockEnergy.assign(d.blocks.size(), 0.0);
-
-    // viscoelastic state
-    d.nTerms = 0;
-    d.nComp = 0;
-    d.Yprev.clear();
-    d.Ycur.clear();
-    d.yComputed = false;
-    if (m_visco) {
-        d.nTerms = int(m_visco->termCount());
-        d.relaxIso = m_visco->relaxesIsochoric();
-        d.relaxVol = m_visco->relaxesVolumetric();
-        d.nComp = d.relaxIso ? 7 : 1;
-        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
-        d.Ycur = d.Yprev;
-    }
+    buildNodeRows(d, n);
+    setUpVisco(d, m_visco, S);
 }
 
 void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {

@@ -29,6 +29,16 @@ extern const double kHexXi[8][3];
 /// Hourglass base vectors xi eta, eta zeta, zeta xi, xi eta zeta at the nodes (Flanagan-Belytschko).
 extern const double kHourglass[4][8];
 
+/// Rest data of linear tetrahedra (x = x0 + sum_k (X_k - X_0) ... through Dm^-1): the inverse rest
+/// edge matrices Dm^-1 (columns X1 - X0, X2 - X0, X3 - X0), volumes and shortest altitudes.
+struct TetRest {
+    std::vector<Mat3> DmInv;
+    std::vector<double> volume, altitude;
+};
+/// TetRest of every tetrahedron; fails located at owner for a node out of range or an element
+/// inverted or flat at rest.
+TetRest tetRest(const core::Component& owner, const Positions& X, const Tetrahedra& tets);
+
 /// The density for wave speeds: the mass's density, else its total mass over the mesh volume
 /// (restVolume, m^3); NaN when neither is known. One rule for HEML and TLED.
 double densityFor(const core::BaseMass& mass, double restVolume);

@@ -1,6 +1,6 @@
 #pragma once
 /// Material assignment per mesh group: the `groupMaterials` parameter ("1 @soft tumour @stiff":
-/// pairs of a group tag or name and a material path) as a typed value, split into pairs once when
+/// pairs of a group tag or name and a material path, the '@' optional) as a typed value, split into pairs once when
 /// read, and resolved against the mesh and the scene by assignMaterials().
 #include "fascia/base/Component.h"
 #include "fascia/base/Param.h"

@@ -6,22 +6,26 @@
 ///   - the test factories and conformance sweeps (createBuiltinMaterial, forEachBuiltinMaterial).
 /// Adding a built-in law: one header with its law struct and component (see docs/design.md, "how to
 /// add a law"), and one entry here.
+#include "fascia/materials/ArrudaBoyce.h"
 #include "fascia/materials/CompressibleMooneyRivlin.h"
 #include "fascia/materials/CompressibleNeoHookean.h"
+#include "fascia/materials/HolzapfelGasserOgden.h"
 #include "fascia/materials/IncompressibleMooneyRivlin.h"
 #include "fascia/materials/IncompressibleNeoHookean.h"
 #include "fascia/materials/NeoHookean.h"
 #include "fascia/materials/Orthotropic.h"
 #include "fascia/materials/StVenantKirchhoff.h"
 #include "fascia/materials/TransverselyIsotropic.h"
+#include "fascia/materials/UncoupledMooneyRivlin.h"
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fascia::materials {
 
-/// A compile-time list of material component classes.
+/// A compile-time list of material component classes (each with kName, kDescription and kExample).
 template <class... Ms>
 struct MaterialList {
     static constexpr size_t size = sizeof...(Ms);
@@ -29,7 +33,8 @@ struct MaterialList {
 
 using BuiltinMaterials = MaterialList<StVenantKirchhoff, IncompressibleNeoHookean, IncompressibleMooneyRivlin,
                                       CompressibleNeoHookean, CompressibleMooneyRivlin, NeoHookean,
-                                      TransverselyIsotropic, Orthotropic>;
+                                      TransverselyIsotropic, Orthotropic, HolzapfelGasserOgden, ArrudaBoyce,
+                                      UncoupledMooneyRivlin>;
 
 namespace detail {
 template <class F, class... Ms>
@@ -57,6 +62,26 @@ inline std::unique_ptr<BaseMaterial> createBuiltinMaterial(const std::string& cl
     forEachBuiltinMaterial([&](auto* tag) {
         using M = std::decay_t<decltype(*tag)>;
         if (!out && className == M::kName) out = std::make_unique<M>();
+    });
+    return out;
+}
+
+/// The example parameters (M::kExample) of a built-in material as (name, value) pairs; empty for an
+/// unknown name.
+inline std::vector<std::pair<std::string, std::string>> exampleParameters(const std::string& className) {
+    std::vector<std::pair<std::string, std::string>> out;
+    forEachBuiltinMaterial([&](auto* tag) {
+        using M = std::decay_t<decltype(*tag)>;
+        if (className != M::kName) return;
+        const std::string text = M::kExample;
+        for (size_t a = 0; a < text.size();) {
+            size_t b = text.find(';', a);
+            if (b == std::string::npos) b = text.size();
+            const std::string item = text.substr(a, b - a);
+            const size_t eq = item.find('=');
+            out.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+            a = b + 1;
+        }
     });
     return out;
 }

@@ -10,6 +10,8 @@ namespace fascia::materials {
 class CompressibleNeoHookean : public Material<CompressibleNeoHookeanLaw> {
 public:
     static constexpr const char* kName = "CompressibleNeoHookean";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;lambda=9000";
     static constexpr const char* kDescription = "compressible neo-Hookean C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (HEML eq. (26))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }

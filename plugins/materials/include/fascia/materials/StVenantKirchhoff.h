@@ -9,6 +9,8 @@ namespace fascia::materials {
 class StVenantKirchhoff : public Material<StVenantKirchhoffLaw> {
 public:
     static constexpr const char* kName = "StVenantKirchhoff";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "youngModulus=3000;poissonRatio=0.45";
     static constexpr const char* kDescription = "Saint Venant-Kirchhoff material, lambda/2 (tr E)^2 + mu tr(E^2) (HEML Table 3)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
