@@ -53,12 +53,17 @@ std::string lawXml(const std::string& m) {
     if (m == "CompressibleMooneyRivlin") a = "C1=\"400\" C2=\"100\" kappa=\"10000\"";
     if (m == "TransverselyIsotropic") a += " eta=\"2000\" direction=\"0 1 1\"";
     if (m == "Orthotropic") a += " eta=\"2000\" direction=\"0 1 0\" eta2=\"1000\" direction2=\"1 0 0\"";
+    if (m == "HolzapfelGasserOgden")
+        a = "mu=\"1000\" k1=\"3000\" k2=\"4\" dispersion=\"0.1\" bulkModulus=\"20000\" direction=\"1 0.2 0.3\" direction2=\"-0.2 1 0.4\"";
+    if (m == "ArrudaBoyce") a = "mu=\"1000\" lambdaM=\"2\" kappa=\"20000\"";
+    if (m == "UncoupledMooneyRivlin") a = "c1=\"400\" c2=\"150\" k=\"20000\"";
     return "<" + m + " name=\"mat\" " + a + "/>";
 }
 
 const char* kLaws[] = {"StVenantKirchhoff",      "IncompressibleNeoHookean", "IncompressibleMooneyRivlin",
                        "CompressibleNeoHookean", "CompressibleMooneyRivlin", "NeoHookean",
-                       "TransverselyIsotropic",  "Orthotropic"};
+                       "TransverselyIsotropic",  "Orthotropic",              "HolzapfelGasserOgden",
+                       "ArrudaBoyce",            "UncoupledMooneyRivlin"};
 
 /// An inline scene: a mesh line, the material lines and the force field line, on a cube fixed at z = 0.
 std::string scene(const std::string& mesh, const std::string& materials, const std::string& ff, const std::string& extra = "") {
