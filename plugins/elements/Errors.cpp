@@ -5,7 +5,7 @@
 namespace fascia::elements {
 
 void runtimeError(const core::Component& owner, const std::string& message) {
-    core::throwSimulationError(owner.className() + " '" + owner.path() + "': " + message);
+    core::throwSimulationError("[" + owner.path() + "] " + message);
 }
 
 } // namespace fascia::elements
