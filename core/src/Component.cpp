@@ -18,7 +18,11 @@ Base::Base() = default;
 
 BaseParam* Base::findParam(const std::string& name) const {
     for (auto* p : m_params)
-        if (p->name() == name) return p;
+        if (p->name() == name) {
+            // a lookup by name is how a link or a test reads an output (ParamLog.h)
+            if (paramLogEnabled()) paramLogRecord(*p, "lookup");
+            return p;
+        }
     return nullptr;
 }
 

@@ -33,7 +33,7 @@ TEST_CASE("dt=auto is the smallest stable step times the safety factor, and is s
     const double crit = sim->criticalTimeStep();
     CHECK(sim->dt() == Approx(0.5 * crit).epsilon(1e-14));
     // the stable step is of the order of the element size over the wave speed: h = 0.025 m,
-    // c_d = 3.373 m/s (waves_and_time_step.txt), shortest altitude of the 6-tet split h/sqrt(3)..h
+    // c_d = 3.373 m/s (tests/reference/waves_and_time_step.txt), shortest altitude of the 6-tet split h/sqrt(3)..h
     const double cd = 3.3733;
     CHECK(crit > 0.2 * 0.025 / cd);
     CHECK(crit < 0.025 / cd);

@@ -28,7 +28,7 @@ std::string body(const std::string& rootAttrs, const std::string& nanAttrs, cons
 
 } // namespace
 
-TEST_CASE("The time step comes from the root node; time is steps times dt", "[Simulation]") {
+TEST_CASE("The time step comes from the root node and time is steps times dt", "[Simulation]") {
     auto sim = scene(body("dt=\"0.01\"", ""));
     CHECK(sim->dt() == 0.01);
     CHECK(sim->root().context().dt == 0.01);
