@@ -7,8 +7,8 @@
 # - FASCIA_PARAM_LOG in its environment, so the core logs the parameters it exercises, and a "ran"
 #   line per entry (written by tests/catch_main.cpp, or by RunMarked.cmake for script tests);
 # - the fixture fascia_param_log, so that param_log_reset runs before it and param_coverage after.
-# Each Catch2 case runs with -w NoTests (a filter that matches no case fails instead of passing)
-# and -w NoAssertions (a case, or a leaf section, that checks nothing fails).
+# Each Catch2 case runs with -w NoTests (a filter that matches no case fails instead of passing);
+# tests/catch_main.cpp turns on NoAssertions (a case, or a leaf section, that checks nothing fails).
 include(Catch)
 if(NOT TARGET fascia_catch_main)
   add_library(fascia_catch_main STATIC ${PROJECT_SOURCE_DIR}/tests/catch_main.cpp)
@@ -28,7 +28,7 @@ function(fascia_add_test)
     FASCIA_BINARY_DIR="${PROJECT_BINARY_DIR}")
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin/tests)
   catch_discover_tests(${T_NAME} WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
-                       EXTRA_ARGS -w NoTests -w NoAssertions
+                       EXTRA_ARGS -w NoTests
                        PROPERTIES TIMEOUT 300
                                   ENVIRONMENT "FASCIA_PARAM_LOG=${PROJECT_BINARY_DIR}/Testing/param-coverage.log"
                                   FIXTURES_REQUIRED fascia_param_log)
