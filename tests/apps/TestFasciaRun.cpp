@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -370,10 +371,10 @@ TEST_CASE("fascia-run stops after the current step on SIGINT or SIGTERM, exits 1
     const int sig = GENERATE(SIGINT, SIGTERM);
     CAPTURE(sig);
     Workspace w;
-    w.write("probe.xml", probeScene("pauseAtStep=\"5\" readyFile=\"ready\""));
+    w.write("probe.xml", probeScene("pauseAtStep=\"120\" readyFile=\"ready\""));
     const pid_t pid = spawnRun(w.dir(), {"probe.xml", "--steps", "1000", "--output", "out"});
     REQUIRE(pid > 0);
-    // the probe writes "ready" at the start of step 5 and waits for the signal there: no sleep
+    // the probe writes "ready" at the start of step 120 and waits for the signal there: no sleep
     // decides when the signal lands
     // (the deadline only ends a hung child; the poll interval decides nothing)
     int status = 0;
@@ -392,27 +393,29 @@ TEST_CASE("fascia-run stops after the current step on SIGINT or SIGTERM, exits 1
     INFO(out << err);
     REQUIRE(WIFEXITED(status));
     CHECK(WEXITSTATUS(status) == 130);
-    CHECK_THAT(out, StartsWith("fascia-run: 5 steps, "));
-    CHECK_THAT(err, Contains("fascia-run: interrupted after 5 steps (files written so far are complete)"));
-    // the Monitor: a header and one complete row for the initial state and each of the 5 steps
+    CHECK_THAT(out, StartsWith("fascia-run: 120 steps, "));
+    CHECK_THAT(err, Contains("fascia-run: interrupted after 120 steps (files written so far are complete)"));
+    // the Monitor: a header and one complete row for the initial state and each of the 120 steps
     std::istringstream csv(slurpFile(w.dir() / "out" / "mon.csv"));
     std::vector<std::string> rows;
     for (std::string line; std::getline(csv, line);) rows.push_back(line);
-    REQUIRE(rows.size() == 7);
+    REQUIRE(rows.size() == 122);
     const auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
     for (auto& r : rows) CHECK(fields(r) == fields(rows[0]));
-    CHECK_THAT(rows.back(), StartsWith("0.005,"));
-    // the exporter: the collection is closed and lists the 6 files, each of them complete
+    CHECK_THAT(rows.back(), StartsWith("0.12,"));
+    // the exporter: the collection is closed and lists the 121 files, each of them complete (past
+    // 100 files the exporter rewrites the .pvd at most once a second: the run must finish it)
     const std::string pvd = slurpFile(w.dir() / "out" / "out.pvd");
     CHECK_THAT(pvd, Contains("</VTKFile>"));
-    for (int i = 0; i <= 5; ++i) {
-        const std::string f = "out_00000" + std::to_string(i) + ".vtu";
+    for (int i = 0; i <= 120; ++i) {
+        char f[32];
+        std::snprintf(f, sizeof f, "out_%06d.vtu", i);
         INFO(f);
-        CHECK_THAT(pvd, Contains("file=\"" + f + "\""));
+        CHECK_THAT(pvd, Contains("file=\"" + std::string(f) + "\""));
         const std::string vtu = slurpFile(w.dir() / "out" / f);
         CHECK(vtu.find("</VTKFile>") != std::string::npos);
     }
-    CHECK_FALSE(fs::exists(w.dir() / "out" / "out_000006.vtu"));
+    CHECK_FALSE(fs::exists(w.dir() / "out" / "out_000121.vtu"));
     for (auto& e : fs::directory_iterator(w.dir() / "out")) CHECK(e.path().filename().string()[0] != '.');
 }
 
