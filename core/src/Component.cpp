@@ -2,6 +2,7 @@
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
+#include <chrono>
 #include <cxxabi.h>
 #include <cstdlib>
 #include <iostream>
@@ -10,9 +11,15 @@ namespace fascia::core {
 
 namespace {
 bool g_timers = false;
+TimerClock g_timerClock = nullptr;
 }
 void setTimersEnabled(bool on) { g_timers = on; }
 bool timersEnabled() { return g_timers; }
+void setTimerClock(TimerClock clock) { g_timerClock = clock; }
+double timerNow() {
+    if (g_timerClock) return g_timerClock();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 Base::Base() = default;
 
