@@ -6,7 +6,7 @@
 // 4 blocks and 2 threads of the first test such a bug passed 30 runs out of 30.
 #include "../../materials/tests/LawReference.h"
 #include "HEMLTestSupport.h"
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <catch2/catch.hpp>
 

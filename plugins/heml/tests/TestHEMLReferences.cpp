@@ -5,7 +5,7 @@
 // group and per element (fibreArray and fibreArray2), and the viscous forces of a held deformation.
 #include "../../materials/tests/LawReference.h"
 #include "HEMLTestSupport.h"
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <catch2/catch.hpp>
 

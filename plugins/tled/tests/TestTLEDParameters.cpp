@@ -2,7 +2,7 @@
 // reference of plugins/materials/tests/LawReference.h: an explicit material="@..." link that picks
 // the second of two materials in the node, and a non-default J0.
 #include "../../materials/tests/LawReference.h"
-#include "TLEDForceField.h"
+#include "fascia/tled/TLEDForceField.h"
 #include "fascia/sim/Simulation.h"
 
 #include <catch2/catch.hpp>
