@@ -1,6 +1,7 @@
 #include "MeshReaders.h"
 
 #include "fascia/base/Error.h"
+#include "fascia/base/InputFile.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>
@@ -90,6 +91,7 @@ void checkReadable(const std::string& path) {
                           "; check the file name and the folder it is in");
     }
     if (fs::is_directory(st)) fail(path, 0, "'" + path + "' is a folder, not a mesh file");
+    core::requireRegularFile(path, "mesh file", core::kMaxMeshFileBytes, {path, 0});  // no FIFO, device or giant
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         const int err = errno;
