@@ -164,7 +164,7 @@ TEST_CASE("A scene that fails before the run starts leaves no file behind", "[fa
     CHECK(w.filesIn("out").empty());
 }
 
-TEST_CASE("A missing, folder, empty or FIFO scene is an error at its line 1 with exit code 2", "[fascia-run]") {
+TEST_CASE("A missing or folder or empty or FIFO scene is an error at its line 1 with exit code 2", "[fascia-run]") {
     Workspace w;
     auto r = w.run("missing.xml");
     CHECK(r.code == 2);

@@ -54,7 +54,7 @@ TEST_CASE("An include that is a FIFO or a device is refused at the include line"
                StartsWith(zero + ":2: error: '/dev/zero' is a character device, not a scene file"));
 }
 
-TEST_CASE("A scene that is a device, a folder, missing or empty is an error at its line 1", "[SceneLoader]") {
+TEST_CASE("A scene that is a device or a folder or missing or empty is an error at its line 1", "[SceneLoader]") {
     TempDir dir;
     CHECK_THAT(messageOf([&] { core::parseSceneFile("/dev/zero"); }),
                StartsWith("/dev/zero:1: error: '/dev/zero' is a character device, not a scene file"));
@@ -119,7 +119,7 @@ TEST_CASE("Scene files past the size limits are refused before they are read", "
     CHECK(core::requireRegularFile(top, "scene file", 1000, {}) == fs::file_size(top));
 }
 
-TEST_CASE("A second root element is an error at its line, not dropped", "[SceneLoader]") {
+TEST_CASE("A second root element is an error at its line and not dropped", "[SceneLoader]") {
     auto e = errorOf([] { core::parseSceneString("<Node name=\"a\"/>\n\n<Node name=\"b\"/>\n", "scene.xml", "."); });
     REQUIRE(e);
     CHECK_THAT(std::string(e->what()), StartsWith("scene.xml:3: error: a second root element <Node> after <Node> (line 1)"));
