@@ -63,12 +63,12 @@ std::string readRegularFile(const std::string& path, const std::string& what, st
     struct stat st {};
     if (::fstat(fd, &st) != 0) throwInputError(loc, "cannot read '" + path + "' (" + std::strerror(errno) + ")");
     checkStat(st, path, what, maxBytes, loc);
-    std::string text(size_t(st.st_size), '\0');
+    std::string text(size_t(st.st_size) + 1, '\0');  // one byte more: filled only when the file grew
     size_t got = 0;
     for (;;) {
         if (got == text.size()) {
-            if (text.size() > maxBytes) break;
-            text.resize(std::max<size_t>(text.size() * 2, 4096));  // the file grew since the stat
+            if (got > maxBytes) break;
+            text.resize(size_t(std::min<std::uintmax_t>(maxBytes + 1, std::max<std::uintmax_t>(2 * got, 4096))));
         }
         const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
         if (n < 0 && errno == EINTR) continue;

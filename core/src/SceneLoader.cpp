@@ -44,10 +44,6 @@ struct ParseState {
 void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec& out, ParseState& state);
 
 ElementSpec parseDocument(const std::string& text, const std::string& file, ParseState& state) {
-    state.bytes += text.size();
-    if (state.bytes > kMaxSceneBytes)
-        throwInputError({file, 1}, "the scene, includes expanded, is more than " + std::to_string(kMaxSceneBytes) +
-                                       " bytes", {"check the <include> elements: does a file include another many times?"});
     tinyxml2::XMLDocument doc;
     doc.Parse(text.c_str(), text.size());
     if (doc.Error()) throwInputError({file, std::max(1, doc.ErrorLineNum())}, xmlProblem(doc));
@@ -89,8 +85,13 @@ void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec
             if (++state.includes > kMaxIncludes)
                 throwInputError(here, "more than " + std::to_string(kMaxIncludes) + " includes in the scene",
                                 {"does a file include another many times (each copy is read again)?"});
+            const std::string text = readSceneFile(target, here);
+            state.bytes += text.size();
+            if (state.bytes > kMaxSceneBytes)
+                throwInputError(here, "the scene, includes expanded, is more than " + std::to_string(kMaxSceneBytes) +
+                                          " bytes", {"does a file include another many times (each copy is read again)?"});
             state.stack.push_back(target);
-            ElementSpec inc = parseDocument(readSceneFile(target, here), target, state);
+            ElementSpec inc = parseDocument(text, target, state);
             state.stack.pop_back();
             out.children.push_back(std::move(inc));
             continue;
@@ -276,7 +277,9 @@ void checkRequired(Node& root) {
 ElementSpec parseSceneFile(const std::string& path) {
     ParseState state;
     state.stack.push_back(path);
-    return parseDocument(readSceneFile(path, {}), path, state);
+    const std::string text = readSceneFile(path, {});
+    state.bytes = text.size();
+    return parseDocument(text, path, state);
 }
 
 ElementSpec parseSceneString(const std::string& xml, const std::string& virtualName, const std::string& baseDir) {
@@ -284,6 +287,7 @@ ElementSpec parseSceneString(const std::string& xml, const std::string& virtualN
     if (baseDir != "." && !baseDir.empty()) name = (fs::path(baseDir) / name).string();
     ParseState state;
     state.stack.push_back(name);
+    state.bytes = xml.size();
     return parseDocument(xml, name, state);
 }
 

@@ -243,10 +243,14 @@ void Simulation::setOutputDir(const std::string& dir) {
 
 const std::string& Simulation::outputDir() const { return m_root->context().outputDir; }
 
-void Simulation::step() {
-    if (!m_initialised) init();
+void Simulation::requireDt() const {
     if (!(m_dt > 0))
         throwInputError(m_root->loc(), "no time step: set dt on the root node (seconds or \"auto\") or pass --dt");
+}
+
+void Simulation::step() {
+    if (!m_initialised) init();
+    requireDt();
     start();
     SceneContext& ctx = m_root->context();
     for (Component* c : m_all) c->beginStep(m_time, m_dt);
@@ -269,6 +273,8 @@ void Simulation::step() {
 }
 
 void Simulation::run(long steps) {
+    if (!m_initialised) init();
+    if (steps > 0) requireDt();  // before the observers write the initial state
     start();
     for (long i = 0; i < steps; ++i) step();
 }

@@ -112,6 +112,14 @@ TEST_CASE("Scene files past the size limits are refused before they are read", "
                           " bytes a scene file may have"));
     const std::string top = dir.write("top.xml", "<Node name=\"root\">\n  <include href=\"big.xml\"/>\n</Node>\n");
     CHECK_THAT(messageOf([&] { core::parseSceneFile(top); }), StartsWith(top + ":2: error: '" + big + "' is "));
+    // five includes of a 60 MiB file (under the per-file limit) pass the 256 MiB of a whole scene
+    const std::string part = dir.write("part.xml", "<Node name=\"p\"/>\n" + std::string(60u << 20, ' ') + "\n");
+    std::string many = "<Node name=\"root\">\n";
+    for (int i = 0; i < 5; ++i) many += "  <include href=\"part.xml\"/>\n";
+    const std::string manyFile = dir.write("many.xml", many + "</Node>\n");
+    CHECK_THAT(messageOf([&] { core::parseSceneFile(manyFile); }),
+               StartsWith(manyFile + ":6: error: the scene, includes expanded, is more than 268435456 bytes"));
+    fs::remove(part);
     // a mesh file that is a FIFO is refused by the same check, which the mesh readers call
     const std::string fifo = fifoIn(dir, "mesh.msh");
     CHECK_THAT(messageOf([&] { core::requireRegularFile(fifo, "mesh file", core::kMaxMeshFileBytes, {fifo, 0}); }),
@@ -255,4 +263,14 @@ TEST_CASE("Init writes nothing: observers see the initial state when the run sta
     CHECK(paramOf<int>(*sim, "c", "observed") == 1);
     sim->step();
     CHECK(paramOf<int>(*sim, "c", "observed") == 2);
+}
+
+TEST_CASE("run without a time step fails before the observers see anything", "[Simulation]") {
+    auto sim = scene(R"(<Node name="root">
+  <TestCounter name="c" label="x"/>
+</Node>)");
+    CHECK_THAT(messageOf([&] { sim->run(3); }), StartsWith("scene.xml:1: error: no time step"));
+    CHECK(paramOf<int>(*sim, "c", "observed") == 0);
+    sim->run(0);  // no step: no time step needed, the initial state is observed
+    CHECK(paramOf<int>(*sim, "c", "observed") == 1);
 }

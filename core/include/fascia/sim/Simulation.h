@@ -80,6 +80,8 @@ public:
 private:
     /// The smallest stable time step and the force field that sets it (null when none does).
     std::pair<double, const BaseForceField*> limitingForceField() const;
+    /// The located "no time step" error when dt is not set.
+    void requireDt() const;
     std::unique_ptr<Node> m_root;
     std::vector<MechanicalGroup> m_groups;
     std::vector<BaseObserver*> m_observers;
