@@ -1,6 +1,8 @@
 #include "Monitor.h"
 #include "fascia/scene/Node.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -101,8 +103,13 @@ void Monitor::init() {
     const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
     m_path = (fs::path(node()->context().outputDir) / file).string();
     node()->context().claimOutput(m_path, *this);
-    m_header = h.str();  // the file is created at the first observation: init writes nothing
-    m_out.reset();
+    m_header = h.str();  // the file is created at the first observation: init writes nothing,
+    m_out.reset();       // but refuses a file that could not be created (its nearest folder is not writable)
+    fs::path up = fs::path(m_path).parent_path();
+    std::error_code ec;
+    while (!up.empty() && !fs::exists(up, ec)) up = up.parent_path();
+    if (!up.empty() && (!fs::is_directory(up, ec) || ::access(up.c_str(), W_OK | X_OK) != 0))
+        fail(m_filename, "cannot write '" + m_path + "'");
 }
 
 void Monitor::observe(double t, long step) {
