@@ -3,7 +3,10 @@
 
 #include "ViscoelasticProny.h"
 #include "fascia/base/NodeOrder.h"
+#include "fascia/materials/ArrudaBoyce.h"
+#include "fascia/materials/HolzapfelGasserOgden.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/materials/UncoupledMooneyRivlin.h"
 #include "fascia/scene/Node.h"
 
 #include <Eigen/Dense>
@@ -25,7 +28,7 @@ using materials::BaseMaterial;
 namespace {
 
 // the built-in laws that get an inlined element loop
-enum LawKind { Generic, SVK, IncNH, IncMR, CompNH, CompMR, NH, TI, Ortho };
+enum LawKind { Generic, SVK, IncNH, IncMR, CompNH, CompMR, NH, TI, Ortho, HGO, AB, UMR };
 
 int lawKind(const BaseMaterial* m) {
     using namespace materials;
@@ -37,6 +40,9 @@ int lawKind(const BaseMaterial* m) {
     if (dynamic_cast<const Material<NeoHookeanLaw>*>(m)) return NH;
     if (dynamic_cast<const Material<TransverselyIsotropicLaw>*>(m)) return TI;
     if (dynamic_cast<const Material<OrthotropicLaw>*>(m)) return Ortho;
+    if (dynamic_cast<const Material<HolzapfelGasserOgdenLaw>*>(m)) return HGO;
+    if (dynamic_cast<const Material<ArrudaBoyceLaw>*>(m)) return AB;
+    if (dynamic_cast<const Material<UncoupledMooneyRivlinLaw>*>(m)) return UMR;
     return Generic;
 }
 
@@ -59,6 +65,9 @@ double runAny(HEMLData& d, const Block& b, const std::vector<int>& kinds, const 
     case NH: return runBlock<LawEval<NeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<NeoHookeanLaw>(m)}, x);
     case TI: return runBlock<LawEval<TransverselyIsotropicLaw>, Forces, Visco>(d, b, {lawOf<TransverselyIsotropicLaw>(m)}, x);
     case Ortho: return runBlock<LawEval<OrthotropicLaw>, Forces, Visco>(d, b, {lawOf<OrthotropicLaw>(m)}, x);
+    case HGO: return runBlock<LawEval<HolzapfelGasserOgdenLaw>, Forces, Visco>(d, b, {lawOf<HolzapfelGasserOgdenLaw>(m)}, x);
+    case AB: return runBlock<LawEval<ArrudaBoyceLaw>, Forces, Visco>(d, b, {lawOf<ArrudaBoyceLaw>(m)}, x);
+    case UMR: return runBlock<LawEval<UncoupledMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<UncoupledMooneyRivlinLaw>(m)}, x);
     default: return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
     }
 }

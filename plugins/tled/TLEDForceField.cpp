@@ -4,7 +4,10 @@
 #include "fascia/base/Error.h"
 #include "fascia/base/NodeOrder.h"
 #include "fascia/base/Simd.h"
+#include "fascia/materials/ArrudaBoyce.h"
+#include "fascia/materials/HolzapfelGasserOgden.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/materials/UncoupledMooneyRivlin.h"
 #include "fascia/scene/Node.h"
 
 #include <Eigen/Dense>
@@ -802,7 +805,9 @@ void chooseKernel(Impl::Group& g) {
         tryLaw<materials::OrthotropicLaw, Block>(g) || tryLaw<materials::CompressibleNeoHookeanLaw, Block>(g) ||
         tryLaw<materials::CompressibleMooneyRivlinLaw, Block>(g) || tryLaw<materials::StVenantKirchhoffLaw, Block>(g) ||
         tryLaw<materials::IncompressibleNeoHookeanLaw, Block>(g) ||
-        tryLaw<materials::IncompressibleMooneyRivlinLaw, Block>(g))
+        tryLaw<materials::IncompressibleMooneyRivlinLaw, Block>(g) ||
+        tryLaw<materials::HolzapfelGasserOgdenLaw, Block>(g) || tryLaw<materials::ArrudaBoyceLaw, Block>(g) ||
+        tryLaw<materials::UncoupledMooneyRivlinLaw, Block>(g))
         return;
     g.law = nullptr;
     using Fn = Impl::KernelFn;
