@@ -142,7 +142,7 @@ std::unique_ptr<Simulation> build(const Case& c, int threads) {
 /// Times the cases side by side: every case is built and warmed up first, then the repeats run in
 /// rounds (each round times every case once), so that a slow spell of a noisy machine hits all of
 /// them alike. Beside its own median, each case after the first reports the median over the rounds
-/// of its time divided by the first case's time in the same round (docs/performance.md).
+/// of its time divided by the first case's time in the same round (docs/performance.md, lesson 9).
 void runCases(const std::vector<Case>& cs) {
     const size_t nc = cs.size();
     std::vector<std::unique_ptr<Simulation>> sims;

@@ -7,10 +7,16 @@ namespace fascia::mechanics {
 void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
     g.computeForces(t);
     const double alpha = m_damping.get();
+    auto it = std::find_if(m_lastDt.begin(), m_lastDt.end(), [&](const auto& s) { return s.first == g.state; });
     double kick = dt;
-    if (std::find(m_started.begin(), m_started.end(), g.state) == m_started.end()) {
-        m_started.push_back(g.state);
+    if (it == m_lastDt.end()) {
+        m_lastDt.emplace_back(g.state, dt);
         if (m_halfStepStart.get()) kick = 0.5 * dt;
+    } else {
+        // staggered velocities v(t - dt_old/2) reach v(t + dt/2) over (dt_old + dt)/2 (the variable-step
+        // leapfrog), so that a change of dt keeps the scheme second order
+        if (m_halfStepStart.get()) kick = 0.5 * (it->second + dt);
+        it->second = dt;
     }
     updateNodes(g, [=](double& x, double& v, double f, double invMass) {
         v += kick * (invMass * f - alpha * v);  // HEML eq. (32), first line

@@ -1,6 +1,7 @@
 #pragma once
 #include "Integrator.h"
 
+#include <utility>
 #include <vector>
 
 namespace fascia::mechanics {
@@ -12,7 +13,8 @@ namespace fascia::mechanics {
 /// order in positions, so a constant acceleration gives u = a t^2/2 to round-off. Without it, the
 /// paper's eq. (32) from rest, first order (u = a t (t + dt)/2 under constant acceleration).
 /// Note that with halfStepStart the velocities the state holds (and exporters write) are the
-/// leapfrog's mid-step velocities v(t - dt/2), as in every staggered scheme.
+/// leapfrog's mid-step velocities v(t - dt/2), as in every staggered scheme. After a change of dt the
+/// first kick spans (dt_old + dt)/2, from v(t - dt_old/2) to v(t + dt/2).
 class SemiImplicitEuler : public DampedIntegrator {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
@@ -20,7 +22,8 @@ public:
     core::Param<bool> m_halfStepStart{this, core::ParamSpec("halfStepStart").help("first velocity update over dt/2 (leapfrog start: second-order positions; velocities are then mid-step values)"), true};
 
 private:
-    std::vector<const core::BaseMechanicalState*> m_started;
+    /// the states stepped so far, with the dt of their last step
+    std::vector<std::pair<const core::BaseMechanicalState*, double>> m_lastDt;
 };
 
 } // namespace fascia::mechanics

@@ -67,6 +67,30 @@ TEST_CASE("explicit Euler follows HEML eq. (31)", "[ExplicitEuler]") {
     CHECK(sim->state("mo").x()[0][2] == Approx(-0.5 * 9.81 * t * (t - dt)).epsilon(1e-12));
 }
 
+TEST_CASE("explicit Euler with damping follows the closed form of its damped steps", "[ExplicitEuler]") {
+    // HEML eq. (31) with mass-proportional damping: x(n+1) = x(n) + dt v(n), v(n+1) = r v(n) + dt g with
+    // r = 1 - alpha dt. Summed: v(n) = r^n v0 + dt g (1 - r^n)/(1 - r) and
+    // x(n) = x0 + dt [v0 (1 - r^n)/(1 - r) + dt g/(1 - r) (n - (1 - r^n)/(1 - r))].
+    const double dt = 0.01, alpha = 5, g = -9.81, v0 = 2;
+    auto sim = Simulation::fromString("<Node name=\"root\" dt=\"0.01\" gravity=\"0 0 -9.81\">\n"
+                                      "  <ExplicitEuler damping=\"5\"/>\n"
+                                      "  <MechanicalObject name=\"mo\" position=\"0 0 0\" initialVelocity=\"2 0 2\"/>\n"
+                                      "  <LumpedMass totalMass=\"2\"/>\n"
+                                      "</Node>\n");
+    auto& mo = sim->state("mo");
+    sim->step();
+    // one step: the position moves with v(0), the velocity feels gravity and the damping -alpha v(0)
+    CHECK(mo.x()[0][0] == Approx(dt * v0).epsilon(1e-14));
+    CHECK(mo.v()[0][0] == Approx(v0 * (1 - alpha * dt)).epsilon(1e-14));
+    CHECK(mo.v()[0][2] == Approx(v0 + dt * (g - alpha * v0)).epsilon(1e-14));
+    sim->run(49);
+    const double r = 1 - alpha * dt, n = 50, rn = std::pow(r, n), s = (1 - rn) / (1 - r);
+    CHECK(mo.v()[0][0] == Approx(rn * v0).epsilon(1e-12));
+    CHECK(mo.x()[0][0] == Approx(dt * v0 * s).epsilon(1e-12));
+    CHECK(mo.v()[0][2] == Approx(rn * v0 + dt * g * s).epsilon(1e-12));
+    CHECK(mo.x()[0][2] == Approx(dt * (v0 * s + dt * g / (1 - r) * (n - s))).epsilon(1e-12));
+}
+
 TEST_CASE("the integrators move every node of a large state, on the threads", "[SemiImplicitEuler][ExplicitEuler]") {
     // 3,375 nodes: above kParallelNodes, and not a multiple of the node chunk or of the vector width,
     // so the last chunk ends in the loops' remainders; every node falls freely under gravity
@@ -290,10 +314,33 @@ TEST_CASE("gravity without a mass is an error, not a body that silently stays pu
                Contains("scene.xml:3:") && Contains("no mass in its context"));
 }
 
-TEST_CASE("changing dt mid-run keeps the clock continuous", "[Simulation]") {
-    auto sim = Simulation::fromString(cloud("CentralDifference", "", "0 0 0"));
+TEST_CASE("changing dt mid-run keeps the clock continuous and the integrator exact under constant acceleration",
+          "[Simulation][CentralDifference][SemiImplicitEuler]") {
+    // both schemes integrate a constant acceleration exactly (u = g t^2/2, checked above); after a change
+    // of dt they must still do so: CentralDifference restarts its history x(n-1) for the new step, the
+    // leapfrog's first kick spans (dt_old + dt_new)/2. A history kept from the old step (or a kick of
+    // dt_new) leaves an error of order g dt^2, far above the round-off tolerance.
+    const std::string integrator = GENERATE(as<std::string>{}, "CentralDifference", "SemiImplicitEuler");
+    CAPTURE(integrator);
+    auto sim = Simulation::fromString(cloud(integrator));
+    auto& mo = sim->state("mo");
+    auto check = [&](double dt) {
+        const double t = sim->time();
+        INFO("t = " << t << ", dt = " << dt);
+        CHECK(mo.x()[1][2] == Approx(-0.5 * 9.81 * t * t).epsilon(1e-11));
+        CHECK(mo.x()[1][0] == 1.0);
+        // the velocity the state holds: v(t) for central difference, the mid-step v(t - dt/2) for leapfrog
+        const double tv = integrator == "CentralDifference" ? t : t - 0.5 * dt;
+        CHECK(mo.v()[1][2] == Approx(-9.81 * tv).epsilon(1e-11));
+    };
     sim->run(10);  // 0.1 s
+    check(0.01);
     sim->setDt(0.001);
     sim->run(10);
     CHECK(sim->time() == Approx(0.11).epsilon(1e-12));
+    check(0.001);
+    sim->setDt(0.004);
+    sim->run(5);
+    CHECK(sim->time() == Approx(0.13).epsilon(1e-12));
+    check(0.004);
 }

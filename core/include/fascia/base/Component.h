@@ -60,8 +60,8 @@ struct Timer {
     long calls = 0;
 };
 
-/// Per-component timing is off by default (two clock reads per call cost about 40 ns, which adds
-/// up over many small components); fascia-run --timers and Simulation users turn it on.
+/// Per-component timing is off by default (two clock reads per call, which add up over many small
+/// components; docs/performance.md, lesson 14); fascia-run --timers and Simulation users turn it on.
 void setTimersEnabled(bool on);
 bool timersEnabled();
 

@@ -104,8 +104,7 @@ public:
 struct MechanicalGroup;
 
 /// Node loops of the framework (forces, integrators, checks) run on the OpenMP threads above this
-/// many nodes; below it a parallel region costs more than it saves (at 4,096 nodes the parallel
-/// loops gave 5-10 % of a 2-thread step, docs/performance.md).
+/// many nodes; below it a parallel region costs more than it saves (docs/performance.md, lesson 13).
 constexpr long kParallelNodes = 2048;
 
 /// Nodes per chunk of forEachNodeRange: fixed (never the thread count), so that every node goes
@@ -113,8 +112,8 @@ constexpr long kParallelNodes = 2048;
 constexpr long kNodeChunk = 1024;
 
 /// Runs body(lo, hi) over [0, n) in chunks of kNodeChunk nodes, on the OpenMP threads above
-/// kParallelNodes. For node loops written over the flat arrays (flat()): GCC vectorises those,
-/// where a loop of Eigen Vec3 expressions ran up to 2 times slower (docs/performance.md).
+/// kParallelNodes. For node loops written over the flat arrays (flat()): GCC vectorises those
+/// better than loops of Eigen Vec3 expressions (docs/performance.md, lesson 13).
 template <class Body>
 inline void forEachNodeRange(long n, Body&& body) {
     const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
@@ -143,7 +142,8 @@ inline double sumNodeRange(long n, Body&& body) {
 }
 
 /// Runs body(i) for i in [0, n), chunk by chunk through forEachNodeRange (on the OpenMP threads
-/// above kParallelNodes; below it no parallel region at all: even an inactive one costs about 0.3 us).
+/// above kParallelNodes; below it no parallel region at all: even an inactive one costs more than a
+/// small loop, docs/performance.md, lesson 13).
 template <class Body>
 inline void forEachNode(long n, Body&& body) {
     forEachNodeRange(n, [&](long lo, long hi) {
