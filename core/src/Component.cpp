@@ -2,6 +2,7 @@
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
+#include <chrono>
 #include <cxxabi.h>
 #include <cstdlib>
 #include <iostream>
@@ -10,15 +11,25 @@ namespace fascia::core {
 
 namespace {
 bool g_timers = false;
+TimerClock g_timerClock = nullptr;
 }
 void setTimersEnabled(bool on) { g_timers = on; }
 bool timersEnabled() { return g_timers; }
+void setTimerClock(TimerClock clock) { g_timerClock = clock; }
+double timerNow() {
+    if (g_timerClock) return g_timerClock();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 Base::Base() = default;
 
 BaseParam* Base::findParam(const std::string& name) const {
     for (auto* p : m_params)
-        if (p->name() == name) return p;
+        if (p->name() == name) {
+            // a lookup by name is how a link or a test reads an output (ParamLog.h)
+            if (paramLogEnabled()) paramLogRecord(*p, "lookup");
+            return p;
+        }
     return nullptr;
 }
 

@@ -91,7 +91,10 @@ void collectRequiredPlugins(const ElementSpec& s, std::vector<const ElementSpec*
 void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks) {
     std::set<std::string> seen;
     for (auto& [key, value] : spec.attributes) {
-        BaseParam* p = obj.findParam(key);
+        // not findParam: an attribute sets the parameter, which read() records (ParamLog.h)
+        BaseParam* p = nullptr;
+        for (BaseParam* q : obj.params())
+            if (q->name() == key) p = q;
         if (!p) {
             std::vector<std::string> notes;
             auto close = closestMatches(key, obj.paramNames());

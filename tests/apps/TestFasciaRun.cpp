@@ -5,12 +5,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -197,7 +202,7 @@ TEST_CASE("fascia-run --steps 0 initialises and stops", "[fascia-run]") {
     CHECK(s.simulated == 0);
 }
 
-TEST_CASE("fascia-run --output creates the folder; --threads is accepted", "[fascia-run]") {
+TEST_CASE("fascia-run --output creates the folder and accepts --threads", "[fascia-run]") {
     Workspace w;
     w.write("good.xml", scene("dt=\"0.01\""));
     auto r = w.run("good.xml --steps 2 --threads 1 --output out/deep");
@@ -314,4 +319,118 @@ TEST_CASE("fascia-run --timers prints the time of each component", "[fascia-run]
     INFO(r.out << r.err);
     CHECK(r.code == 0);
     CHECK(std::regex_search(r.out, std::regex(R"(/root/body/euler +TestEuler +[0-9.]+ +3\b)")));
+}
+
+namespace {
+
+const std::string kProbePlugin = std::string(TEST_PLUGIN_DIR) + "/probe/libfascia_testplugin_probe.so";
+
+/// A small body of the built-in plugins with a VTKExporter and a Monitor, and the test probe.
+std::string probeScene(const std::string& probeAttrs) {
+    return R"(<Node name="root" dt="0.001" gravity="0 0 -9.81">
+  <RequiredPlugin name=")" + kProbePlugin + R"("/>
+  <TestProbe name="probe" )" + probeAttrs + R"(/>
+  <Node name="body">
+    <GridMesh name="grid" min="0 0 0" max="0.2 0.1 0.1" resolution="2 2 2" element="tetrahedra6"/>
+    <MechanicalObject name="state"/>
+    <LumpedMass density="1000"/>
+    <SemiImplicitEuler/>
+    <FixedConstraint group="zmin"/>
+    <VTKExporter name="out"/>
+    <Monitor name="mon" indices="0 26" positions="true"/>
+  </Node>
+</Node>
+)";
+}
+
+std::string slurpFile(const fs::path& p) {
+    std::ifstream in(p);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+/// fascia-run started in dir with args, its output into dir/stdout.txt and dir/stderr.txt.
+pid_t spawnRun(const fs::path& dir, const std::vector<std::string>& args) {
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    if (chdir(dir.c_str()) != 0) _exit(126);
+    if (!freopen("stdout.txt", "w", stdout) || !freopen("stderr.txt", "w", stderr) || !freopen("/dev/null", "r", stdin))
+        _exit(126);
+    std::vector<char*> argv{const_cast<char*>(FASCIA_RUN)};
+    for (auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(FASCIA_RUN, argv.data());
+    _exit(127);
+}
+
+} // namespace
+
+TEST_CASE("fascia-run stops after the current step on SIGINT or SIGTERM, exits 130 and leaves complete files",
+          "[fascia-run]") {
+    const int sig = GENERATE(SIGINT, SIGTERM);
+    CAPTURE(sig);
+    Workspace w;
+    w.write("probe.xml", probeScene("pauseAtStep=\"120\" readyFile=\"ready\""));
+    const pid_t pid = spawnRun(w.dir(), {"probe.xml", "--steps", "1000", "--output", "out"});
+    REQUIRE(pid > 0);
+    // the probe writes "ready" at the start of step 120 and waits for the signal there: no sleep
+    // decides when the signal lands
+    // (the deadline only ends a hung child; the poll interval decides nothing)
+    int status = 0;
+    bool exited = false;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(w.dir() / "ready") && !exited && std::chrono::steady_clock::now() < deadline) {
+        exited = waitpid(pid, &status, WNOHANG) == pid;
+        usleep(1000);
+    }
+    if (!exited && !fs::exists(w.dir() / "ready")) kill(pid, SIGKILL);
+    REQUIRE_FALSE(exited);
+    REQUIRE(fs::exists(w.dir() / "ready"));
+    REQUIRE(kill(pid, sig) == 0);
+    REQUIRE(waitpid(pid, &status, 0) == pid);
+    const std::string out = slurpFile(w.dir() / "stdout.txt"), err = slurpFile(w.dir() / "stderr.txt");
+    INFO(out << err);
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    CHECK_THAT(out, StartsWith("fascia-run: 120 steps, "));
+    CHECK_THAT(err, Contains("fascia-run: interrupted after 120 steps (files written so far are complete)"));
+    // the Monitor: a header and one complete row for the initial state and each of the 120 steps
+    std::istringstream csv(slurpFile(w.dir() / "out" / "mon.csv"));
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(csv, line);) rows.push_back(line);
+    REQUIRE(rows.size() == 122);
+    const auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
+    for (auto& r : rows) CHECK(fields(r) == fields(rows[0]));
+    CHECK_THAT(rows.back(), StartsWith("0.12,"));
+    // the exporter: the collection is closed and lists the 121 files, each of them complete (past
+    // 100 files the exporter rewrites the .pvd at most once a second: the run must finish it)
+    const std::string pvd = slurpFile(w.dir() / "out" / "out.pvd");
+    CHECK_THAT(pvd, Contains("</VTKFile>"));
+    for (int i = 0; i <= 120; ++i) {
+        char f[32];
+        std::snprintf(f, sizeof f, "out_%06d.vtu", i);
+        INFO(f);
+        CHECK_THAT(pvd, Contains("file=\"" + std::string(f) + "\""));
+        const std::string vtu = slurpFile(w.dir() / "out" / f);
+        CHECK(vtu.find("</VTKFile>") != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(w.dir() / "out" / "out_000121.vtu"));
+    for (auto& e : fs::directory_iterator(w.dir() / "out")) CHECK(e.path().filename().string()[0] != '.');
+}
+
+TEST_CASE("fascia-run --threads sets the OpenMP threads the run uses", "[fascia-run]") {
+    Workspace w;
+    w.write("probe.xml", probeScene("threadsFile=\"threads.txt\""));
+    const auto threads = [&](const std::string& args) {
+        fs::remove(w.dir() / "threads.txt");
+        auto r = w.run("probe.xml --steps 1 " + args, "OMP_NUM_THREADS=5");
+        INFO(r.out << r.err);
+        CHECK(r.code == 0);
+        return slurpFile(w.dir() / "threads.txt");
+    };
+    // without --threads the run takes OpenMP's default (here OMP_NUM_THREADS); --threads overrides it
+    CHECK(threads("") == "maxThreads 5\nteamSize 5\n");
+    CHECK(threads("--threads 3") == "maxThreads 3\nteamSize 3\n");
+    CHECK(threads("--threads 1") == "maxThreads 1\nteamSize 1\n");
 }

@@ -3,7 +3,7 @@
 // c_d = sqrt((lambda + 2 mu)/rho). With N equal layers of linear elements and lumped masses the
 // spatially discrete problem has the exact frequencies f_n,h = c_d/(pi h) sin((2n-1) pi h/(4H)),
 // h = H/N, and central-difference/leapfrog time stepping maps omega -> (2/dt) asin(omega dt/2)
-// (the same formulas as the independent table waves_and_time_step.txt, which lists 8.4246 Hz for
+// (the same formulas as the independent table tests/reference/waves_and_time_step.txt, which lists 8.4246 Hz for
 // N = 10, E = 3 kPa, nu = 0.45, rho = 1000 kg/m3).
 #include "fascia/sim/Simulation.h"
 

@@ -24,7 +24,7 @@ Mat3 nominalStress(const materials::BaseMaterial& m, const Mat3& F, double J0 = 
 } // namespace
 
 TEST_CASE("Saint Venant-Kirchhoff uniaxial closed form matches the reference table", "[Analytic]") {
-    // rows copied from the independent reference table uniaxial.txt, section (a1): l, lt, P_zz / Y (mu = 1)
+    // rows copied from the independent reference table tests/reference/uniaxial.txt, section (a1): l, lt, P_zz / Y (mu = 1)
     struct Row { double lambda, l, lt, PzzOverY; };
     const Row rows[] = {
         {1.5, 1.5, 0.79056942, 0.93750000},   {1.5, 0.8, 1.05261579, -0.14400000},
@@ -45,7 +45,7 @@ TEST_CASE("Saint Venant-Kirchhoff uniaxial closed form matches the reference tab
 }
 
 TEST_CASE("compressible neo-Hookean uniaxial closed form matches the reference table", "[Analytic]") {
-    // rows copied from the independent reference table uniaxial.txt, section (a2), C1 = mu/2, mu = 1: l, lt, J, P_zz / mu
+    // rows copied from the independent reference table tests/reference/uniaxial.txt, section (a2), C1 = mu/2, mu = 1: l, lt, J, P_zz / mu
     struct Row { double lambda, l, lt, J, Pzz; };
     const Row rows[] = {
         {1.5, 1.5, 0.8801745918, 1.16206097, 0.9835284586},
@@ -69,7 +69,7 @@ TEST_CASE("compressible neo-Hookean uniaxial closed form matches the reference t
 }
 
 TEST_CASE("compressible neo-Hookean confined compression through J0 matches the reference table", "[Analytic]") {
-    // rows copied from the independent reference table uniaxial.txt, section (a3), J0 = 0.4, mu = 1: l = J, P_zz / mu, P_xx / mu
+    // rows copied from the independent reference table tests/reference/uniaxial.txt, section (a3), J0 = 0.4, mu = 1: l = J, P_zz / mu, P_xx / mu
     struct Row { double lambda, l, Pzz, Pxx; };
     const Row rows[] = {
         {1.5, 0.6, -2.3437307261, -0.7662384356},   {1.5, 0.2, -10.5791353668, -1.1558270734},

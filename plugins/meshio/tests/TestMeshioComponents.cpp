@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -125,7 +126,7 @@ TEST_CASE("BoxROI selects the nodes and elements inside its box", "[BoxROI]") {
     CHECK_THAT(errorOf(cube("hexahedra", "  <BoxROI box=\"0 0 0 1 1\"/>\n")), Contains("scene.xml:6:") && Contains("expected 6"));
 }
 
-TEST_CASE("MeshLoader reads, scales and moves a mesh; a bad file is located in the scene and the file",
+TEST_CASE("MeshLoader reads, scales and moves a mesh, and a bad file is located in the scene and the file",
           "[MeshLoader]") {
     const std::string meshPath = std::string(FASCIA_SOURCE_DIR) + "/scenes/meshes/organ_2428.msh";
     auto sim = Simulation::fromString("<Node name=\"root\" dt=\"0.001\">\n"
@@ -211,52 +212,75 @@ TEST_CASE("VTKExporter lists every file in the .pvd at the end of a long series"
 }
 
 TEST_CASE("a run killed mid-way leaves only complete exporter files", "[VTKExporter]") {
+    // The child runs 3 steps (4 complete files), then caps the size of any file it writes at half
+    // the smallest of them (RLIMIT_FSIZE, which binds root too): the next .vtu write crosses the
+    // cap, the kernel raises SIGXFSZ inside that write, and the handler turns it into SIGKILL.
+    // So the kill lands in the middle of writing a file, at a known file, with no sleep involved.
     auto dir = freshDir("killed");
     const std::string xml = cube("tetrahedra6", "  <FixedConstraint group=\"zmin\"/>\n  <VTKExporter name=\"out\"/>\n",
-                                 "30 30 30");
+                                 "4 4 4");
     pid_t child = fork();
     REQUIRE(child >= 0);
     if (child == 0) {
         try {
             auto sim = Simulation::fromString(xml, "scene.xml", ".", {dir.string(), 0});
-            for (;;) sim->step();
+            sim->run(3);
+            uintmax_t smallest = fs::file_size(dir / "out_000000.vtu");
+            for (int i = 1; i <= 3; ++i) {
+                const uintmax_t size = fs::file_size(dir / ("out_00000" + std::to_string(i) + ".vtu"));
+                if (size < smallest) smallest = size;
+            }
+            const rlim_t cap = rlim_t(smallest / 2);
+            std::ofstream(dir / "cap.txt") << cap << "\n";
+            const rlimit noCore{0, 0}, fsize{cap, cap};
+            setrlimit(RLIMIT_CORE, &noCore);
+            std::signal(SIGXFSZ, [](int) { kill(getpid(), SIGKILL); });
+            setrlimit(RLIMIT_FSIZE, &fsize);
+            for (int i = 0; i < 10; ++i) sim->step();
         } catch (...) {
         }
-        _exit(0);
+        _exit(0);  // not reached when the cap works
     }
-    // kill it while it writes: wait until a few steps are out
-    for (int i = 0; i < 600 && !fs::exists(dir / "out_000003.vtu"); ++i) usleep(10000);
-    usleep(37000);
-    kill(child, SIGKILL);
     int status = 0;
     waitpid(child, &status, 0);
     REQUIRE(WIFSIGNALED(status));
+    REQUIRE(WTERMSIG(status) == SIGKILL);
+    uintmax_t cap = 0;
+    std::ifstream(dir / "cap.txt") >> cap;
+    REQUIRE(cap > 0);
+    // the kill landed during the write of the fifth file: its temporary holds exactly cap bytes
+    REQUIRE(fs::exists(dir / ".out_000004.vtu.tmp"));
+    CHECK(fs::file_size(dir / ".out_000004.vtu.tmp") == cap);
     int complete = 0;
     for (auto& e : fs::directory_iterator(dir)) {
         const auto name = e.path().filename().string();
-        if (name[0] == '.') continue;  // a temporary file being written when killed
+        if (name[0] == '.') continue;  // the temporary file being written when killed
         if (e.path().extension() == ".vtu") {
             vtkNew<vtkXMLUnstructuredGridReader> reader;
             reader->SetFileName(e.path().string().c_str());
             reader->Update();
             INFO(name);
-            REQUIRE(reader->GetOutput()->GetNumberOfPoints() == 31 * 31 * 31);
+            REQUIRE(reader->GetOutput()->GetNumberOfPoints() == 5 * 5 * 5);
             REQUIRE(reader->GetOutput()->GetPointData()->GetArray("displacement"));
             ++complete;
         }
     }
-    CHECK(complete >= 3);
-    // the collection lists only files that exist
+    CHECK(complete == 4);
+    CHECK_FALSE(fs::exists(dir / "out_000004.vtu"));
+    // the collection lists only files that exist: the four complete ones
     auto pvd = slurp(dir / "out.pvd");
     CHECK_THAT(pvd, Contains("</VTKFile>"));
     std::istringstream in(pvd);
+    int listed = 0;
     for (std::string line; std::getline(in, line);) {
         auto p = line.find("file=\"");
         if (p == std::string::npos) continue;
         auto f = line.substr(p + 6, line.find('"', p + 6) - p - 6);
         INFO(f);
         CHECK(fs::exists(dir / f));
+        ++listed;
     }
+    CHECK(listed == 4);
 }
 
 TEST_CASE("Monitor and exporter parameters are checked", "[Monitor][VTKExporter]") {

@@ -62,7 +62,7 @@ TEST_CASE("TLEDForceField relaxes a compressed cube like the homogeneous referen
     const double c = std::sqrt((326210 + 4.0 / 3.0 * 6567 + 13134) / 1000.0);
     CHECK(sim->dt() == Approx(0.5 * (0.1 / 3) / c).epsilon(1e-9));
 
-    // reference (shared/reference/relaxation.txt, case TI-V-z): reaction on the loaded face
+    // reference (tests/reference/relaxation.txt, case TI-V-z): reaction on the loaded face
     // Fz = P_zz * A0 at t = 1 s and 5 s (exact hereditary integral, quasi-static)
     const double Fz1 = -86.252190, Fz5 = -67.309324;
     const long n1 = std::lround(1.0 / sim->dt()), n5 = std::lround(5.0 / sim->dt());
@@ -115,7 +115,7 @@ std::pair<double, double> lateralStretch(core::Simulation& sim) {
 struct RelaxationCase {
     const char* name;
     const char* material;
-    double Fz[3];  // reaction at 1, 2, 5 s (relaxation.txt)
+    double Fz[3];  // reaction at 1, 2, 5 s (tests/reference/relaxation.txt)
     double lx, ly; // lateral stretches at 5 s
 };
 
@@ -123,7 +123,7 @@ struct RelaxationCase {
 
 TEST_CASE("TLED section 6.2: reaction histories and lateral expansion of the isotropic and fibre-reinforced cubes",
           "[TLEDForceField][scene][verification]") {
-    // shared/reference/relaxation.txt, the homogeneous quasi-static reference (load along z): ISO-V,
+    // tests/reference/relaxation.txt, the homogeneous quasi-static reference (load along z): ISO-V,
     // TI-V-z (fibre along the load) and TI-V-x (fibre across the load: the paper's a0 = [0 1 0] with
     // its load along x; Fig. 3c, expansion much reduced along the fibre)
     const RelaxationCase c = GENERATE(

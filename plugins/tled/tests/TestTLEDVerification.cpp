@@ -5,8 +5,8 @@
 //   against our own closed form (the hereditary integral of the polynomial elastic stress);
 // - compression relaxation, section 6.2 (30 % in 0.5 s, held to 5 s), laterally free, against our
 //   own material-point computation.
-// Reference rows copied from the project's independent tables (shared/reference/tled_pure_shear.txt
-// and relaxation.txt) cross-check the closed forms; tests never read those files.
+// Reference rows copied from the project's independent tables (tests/reference/tled_pure_shear.txt
+// and tests/reference/relaxation.txt) cross-check the closed forms; tests never read those files.
 #include "TledTestUtil.h"
 
 #include <catch2/catch.hpp>
@@ -96,7 +96,7 @@ ShearStress ownClosedForm(double r, double t, double mu, double eta, double alph
 
 TEST_CASE("TLED pure-shear closed forms agree with Appendix A and the independent reference table",
           "[TLEDForceField][verification]") {
-    // rows of tled_pure_shear.txt (c = 1, the eq. (33) convention): rate, g, S11, S22, S33, S12
+    // rows of tests/reference/tled_pure_shear.txt (c = 1, the eq. (33) convention): rate, g, S11, S22, S33, S12
     struct Row { double r, g, S11, S22, S33, S12; };
     const Row rows[] = {
         {2.5, 0.10, 64.493194, -130.947413, -65.362824, 652.188136},
@@ -268,7 +268,7 @@ RelaxationResult relax(const std::vector<double>& samples, double dt, StressFn s
 
 TEST_CASE("TLEDForceField reproduces the homogeneous compression-relaxation response of section 6.2",
           "[TLEDForceField][verification][viscoelastic]") {
-    // cases of relaxation.txt: isotropic elastic, isotropic visco, fibres along / across the load
+    // cases of tests/reference/relaxation.txt: isotropic elastic, isotropic visco, fibres along / across the load
     struct Case {
         const char* name;
         double eta, alpha;

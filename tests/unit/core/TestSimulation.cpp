@@ -28,7 +28,7 @@ std::string body(const std::string& rootAttrs, const std::string& nanAttrs, cons
 
 } // namespace
 
-TEST_CASE("The time step comes from the root node; time is steps times dt", "[Simulation]") {
+TEST_CASE("The time step comes from the root node and time is steps times dt", "[Simulation]") {
     auto sim = scene(body("dt=\"0.01\"", ""));
     CHECK(sim->dt() == 0.01);
     CHECK(sim->root().context().dt == 0.01);
@@ -230,8 +230,16 @@ TEST_CASE("state() of a name that is no state is an error", "[Simulation]") {
     CHECK(errorOf([&] { sim->state("nothing"); }));
 }
 
+namespace {
+/// An injected timer clock: each read advances it by exactly 1 ms, so that the time a timer
+/// accumulates counts the clock reads inside it, whatever the machine's speed.
+double g_fakeNow = 0.0;
+double fakeClock() { return g_fakeNow += 1e-3; }
+} // namespace
+
 TEST_CASE("Timers accumulate the calls and time of each component", "[Simulation]") {
     fascia::core::setTimersEnabled(true);
+    fascia::core::setTimerClock(&fakeClock);
     auto sim = scene(body("dt=\"0.01\"", "force=\"1 0 0\""));
     sim->run(4);
     auto rows = sim->timers();
@@ -246,21 +254,36 @@ TEST_CASE("Timers accumulate the calls and time of each component", "[Simulation
     CHECK(row("/root/body/nan").calls == 4);
     CHECK(row("/root/counter").calls == 5);  // observed at init and after each step
     CHECK(row("/root/body/state").calls == 0);
-    for (auto& r : rows) CHECK(r.seconds >= 0.0);
-    const double before = row("/root/body/euler").seconds;
-    CHECK(before > 0.0);
+    // inclusive: a step of the integrator reads the clock at its start, around the force field
+    // (2 reads, 1 ms for the force field) and at its end: 3 ms per step; the observer 1 ms a call
+    CHECK(row("/root/body/euler").seconds == Approx(4 * 3e-3).epsilon(1e-9));
+    CHECK(row("/root/body/nan").seconds == Approx(4 * 1e-3).epsilon(1e-9));
+    CHECK(row("/root/counter").seconds == Approx(5 * 1e-3).epsilon(1e-9));
+    CHECK(row("/root/body/state").seconds == 0.0);
     sim->run(4);
     rows = sim->timers();
     CHECK(row("/root/body/euler").calls == 8);
     CHECK(row("/root/body/nan").calls == 8);
-    CHECK(row("/root/body/euler").seconds >= before);
-    // switched off: calls still counted, no time added
+    CHECK(row("/root/body/euler").seconds == Approx(8 * 3e-3).epsilon(1e-9));
+    // switched off: calls still counted, no time added, the clock not read
     fascia::core::setTimersEnabled(false);
-    const double frozen = row("/root/body/euler").seconds;
+    const double clockBefore = g_fakeNow;
     sim->run(2);
     rows = sim->timers();
     CHECK(row("/root/body/euler").calls == 10);
-    CHECK(row("/root/body/euler").seconds == frozen);
+    CHECK(row("/root/body/euler").seconds == Approx(8 * 3e-3).epsilon(1e-9));
+    CHECK(g_fakeNow == clockBefore);
+    fascia::core::setTimerClock(nullptr);
+}
+
+TEST_CASE("Timers read steady_clock unless a clock is injected", "[Simulation]") {
+    fascia::core::setTimerClock(&fakeClock);
+    const double t = fascia::core::timerNow();
+    CHECK(fascia::core::timerNow() == Approx(t + 1e-3).epsilon(1e-12));
+    fascia::core::setTimerClock(nullptr);
+    const double a = fascia::core::timerNow(), b = fascia::core::timerNow();
+    CHECK(b >= a);  // monotonic
+    CHECK(a != Approx(g_fakeNow));
 }
 
 TEST_CASE("Timer rows are sorted by path", "[Simulation]") {

@@ -2,6 +2,7 @@
 /// Typed parameters declared once: name, type, default, unit, range or choices, required, help.
 /// The one declaration drives XML parsing, validation, error messages and `fascia-run --describe`.
 #include "fascia/base/Error.h"
+#include "fascia/base/ParamLog.h"
 #include "fascia/base/Types.h"
 
 #include <limits>
@@ -81,7 +82,11 @@ protected:
     virtual void parseValue(const std::string& text, const SourceLoc& loc) = 0;
     /// Range check of the stored value; returns an empty string when fine, else the problem.
     virtual std::string rangeProblem() const = 0;
-    void markSet() { m_set = true; }
+    /// Marks the parameter set; while the coverage log is on (ParamLog.h) it records the set.
+    void markSet() {
+        m_set = true;
+        if (paramLogEnabled()) paramLogRecord(*this, "set");
+    }
     [[noreturn]] void badValue(const std::string& text, const std::string& expected, const SourceLoc& loc) const;
     friend class Base;
 
