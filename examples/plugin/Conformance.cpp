@@ -1,10 +1,16 @@
 // Runs Fascia's conformance harness on the example's force field and material:
 // forces = -grad(energy), zero force at rest, invariance under rigid motions; the Yeoh law's
-// derivatives against finite differences, in HEMLForceField and TLEDForceField alike.
+// derivatives against finite differences, in HEMLForceField and TLEDForceField alike; and the
+// force field's forces bitwise the same with 1 and 2 threads.
 #include "fascia/materials/Conformance.h"
 #include "fascia/sim/Simulation.h"
 
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 namespace conf = fascia::materials::conformance;
@@ -30,6 +36,24 @@ static void checkField(const std::string& body, const std::string& label) {
     expect(r.rotationError < 1e-10, (label + ": rigid-motion invariance").c_str(), r.rotationError);
 }
 
+// forces on a 12 x 12 x 12 grid (8640 tetrahedra: 9 element blocks), deformed, with T threads
+static fascia::Positions forcesWith(int threads) {
+    omp_set_num_threads(threads);
+    auto sim = fascia::core::Simulation::fromString(
+        std::string("<Node name=\"root\" dt=\"1e-4\">\n  <RequiredPlugin name=\"") + EXAMPLE_PLUGIN_FILE + "\"/>\n"
+        "  <GridMesh min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"12 12 12\"/>\n  <MechanicalObject name=\"state\"/>\n"
+        "  <CorotationalTetForceField name=\"ff\" youngModulus=\"5000\" poissonRatio=\"0.4\"/>\n</Node>\n",
+        "<threads>");
+    auto& st = sim->state("state");
+    for (size_t i = 0; i < st.size(); ++i) {
+        const fascia::Vec3& X = st.x0()[i];
+        st.x()[i] = X + 0.004 * fascia::Vec3(std::sin(60 * X[1]), std::sin(60 * X[2]), std::sin(60 * X[0]));
+    }
+    fascia::Positions f(st.size(), fascia::Vec3::Zero());
+    dynamic_cast<fascia::core::BaseForceField*>(sim->find("ff"))->addForce(st, f, 0.0);
+    return f;
+}
+
 int main() {
     try {
         checkField("  <CorotationalTetForceField name=\"ff\" youngModulus=\"5000\" poissonRatio=\"0.4\"/>\n", "CorotationalTetForceField");
@@ -43,6 +67,11 @@ int main() {
             expect(r.maxRelError < 1e-7, ("Yeoh: derivatives by central differences, J = " + std::to_string(J)).c_str(), r.maxRelError);
         }
         expect(conf::restStressResidual(*mat) < 1e-12, "Yeoh: stress-free at rest", conf::restStressResidual(*mat));
+        const fascia::Positions f1 = forcesWith(1), f2 = forcesWith(2);
+        double largest = 0;
+        for (const auto& v : f1) largest = std::max(largest, v.norm());
+        expect(largest > 0 && std::memcmp(f1.data(), f2.data(), f1.size() * sizeof(f1[0])) == 0,
+               "CorotationalTetForceField: same forces with 1 and 2 threads", largest);
     } catch (const std::exception& e) {
         std::printf("error: %s\n", e.what());
         return 1;

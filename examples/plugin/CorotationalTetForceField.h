@@ -1,4 +1,6 @@
 #pragma once
+#include "fascia/elements/ElementAssembly.h"
+#include "fascia/elements/Geometry.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <vector>
@@ -9,6 +11,8 @@ namespace example {
 /// decomposition of the deformation gradient, the energy density is
 ///   W = mu |S - I|^2 + lambda/2 tr(S - I)^2,  P = dW/dF = R (2 mu (S - I) + lambda tr(S - I) I),
 /// and f = -Vol P grad(N). Linear elasticity for small strains, invariant under rotation.
+/// Built on the element layer (fascia/elements): its geometry, stable time step and deterministic
+/// block buffers, so it runs on all threads with the same forces for any thread count.
 class CorotationalTetForceField : public fascia::core::BaseForceField {
 public:
     void init() override;
@@ -24,10 +28,10 @@ public:
 private:
     /// P and W of one element at the given positions.
     double elementStress(const fascia::Positions& x, size_t e, fascia::Mat3& P) const;
-    fascia::Tetrahedra m_tets;
-    std::vector<fascia::Mat3> m_DmInv;  ///< inverse rest edge matrix
-    std::vector<double> m_vol;
-    double m_mu = 0, m_lambda = 0, m_minHeight = 0;
+    fascia::Tetrahedra m_tets;              ///< sorted by lowest node (ElementAssembly::init)
+    fascia::elements::TetRest m_rest;       ///< Dm^-1, volumes and altitudes at rest
+    fascia::elements::ElementAssembly m_assembly;  ///< fixed blocks of elements, one node buffer each
+    double m_mu = 0, m_lambda = 0;
 };
 
 } // namespace example

@@ -1,13 +1,15 @@
-#include "HEMLForceField.h"
+#include "fascia/heml/HEMLForceField.h"
 #include "HEMLKernel.h"
 
-#include "ViscoelasticProny.h"
 #include "fascia/base/NodeOrder.h"
-#include "fascia/materials/ArrudaBoyce.h"
-#include "fascia/materials/HolzapfelGasserOgden.h"
+#include "fascia/elements/Errors.h"
+#include "fascia/elements/FibreField.h"
+#include "fascia/elements/Geometry.h"
+#include "fascia/elements/LawDispatch.h"
+#include "fascia/elements/Tensor3.h"
 #include "fascia/materials/Laws.h"
-#include "fascia/materials/UncoupledMooneyRivlin.h"
 #include "fascia/scene/Node.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -27,49 +29,46 @@ using materials::BaseMaterial;
 
 namespace {
 
-// the built-in laws that get an inlined element loop
-enum LawKind { Generic, SVK, IncNH, IncMR, CompNH, CompMR, NH, TI, Ortho, HGO, AB, UMR };
-
-int lawKind(const BaseMaterial* m) {
-    using namespace materials;
-    if (dynamic_cast<const Material<StVenantKirchhoffLaw>*>(m)) return SVK;
-    if (dynamic_cast<const Material<IncompressibleNeoHookeanLaw>*>(m)) return IncNH;
-    if (dynamic_cast<const Material<IncompressibleMooneyRivlinLaw>*>(m)) return IncMR;
-    if (dynamic_cast<const Material<CompressibleNeoHookeanLaw>*>(m)) return CompNH;
-    if (dynamic_cast<const Material<CompressibleMooneyRivlinLaw>*>(m)) return CompMR;
-    if (dynamic_cast<const Material<NeoHookeanLaw>*>(m)) return NH;
-    if (dynamic_cast<const Material<TransverselyIsotropicLaw>*>(m)) return TI;
-    if (dynamic_cast<const Material<OrthotropicLaw>*>(m)) return Ortho;
-    if (dynamic_cast<const Material<HolzapfelGasserOgdenLaw>*>(m)) return HGO;
-    if (dynamic_cast<const Material<ArrudaBoyceLaw>*>(m)) return AB;
-    if (dynamic_cast<const Material<UncoupledMooneyRivlinLaw>*>(m)) return UMR;
-    return Generic;
-}
-
-template <class Law>
-const Law& lawOf(const BaseMaterial* m) {
-    return static_cast<const materials::Material<Law>*>(m)->law();
+template <class Law, bool Forces, bool Visco>
+double runLaw(HEMLData& d, const Block& b, const double* x) {
+    const BaseMaterial* m = d.materials[size_t(b.material)];
+    if constexpr (std::is_same_v<Law, elements::GenericLaw>)
+        return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
+    else
+        return runBlock<LawEval<Law>, Forces, Visco>(d, b, {elements::lawOf<Law>(m)}, x);
 }
 
 template <bool Forces, bool Visco>
-double runAny(HEMLData& d, const Block& b, const std::vector<int>& kinds, const double* x) {
-    using namespace materials;
-    if (d.massSpring) return runBlock<SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
-    const BaseMaterial* m = d.materials[b.material];
-    switch (kinds[b.material]) {
-    case SVK: return runBlock<LawEval<StVenantKirchhoffLaw>, Forces, Visco>(d, b, {lawOf<StVenantKirchhoffLaw>(m)}, x);
-    case IncNH: return runBlock<LawEval<IncompressibleNeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<IncompressibleNeoHookeanLaw>(m)}, x);
-    case IncMR: return runBlock<LawEval<IncompressibleMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<IncompressibleMooneyRivlinLaw>(m)}, x);
-    case CompNH: return runBlock<LawEval<CompressibleNeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<CompressibleNeoHookeanLaw>(m)}, x);
-    case CompMR: return runBlock<LawEval<CompressibleMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<CompressibleMooneyRivlinLaw>(m)}, x);
-    case NH: return runBlock<LawEval<NeoHookeanLaw>, Forces, Visco>(d, b, {lawOf<NeoHookeanLaw>(m)}, x);
-    case TI: return runBlock<LawEval<TransverselyIsotropicLaw>, Forces, Visco>(d, b, {lawOf<TransverselyIsotropicLaw>(m)}, x);
-    case Ortho: return runBlock<LawEval<OrthotropicLaw>, Forces, Visco>(d, b, {lawOf<OrthotropicLaw>(m)}, x);
-    case HGO: return runBlock<LawEval<HolzapfelGasserOgdenLaw>, Forces, Visco>(d, b, {lawOf<HolzapfelGasserOgdenLaw>(m)}, x);
-    case AB: return runBlock<LawEval<ArrudaBoyceLaw>, Forces, Visco>(d, b, {lawOf<ArrudaBoyceLaw>(m)}, x);
-    case UMR: return runBlock<LawEval<UncoupledMooneyRivlinLaw>, Forces, Visco>(d, b, {lawOf<UncoupledMooneyRivlinLaw>(m)}, x);
-    default: return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
-    }
+double runSpring(HEMLData& d, const Block& b, const double* x) {
+    return runBlock<SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
+}
+
+} // namespace
+
+/// The element loops of one material: with forces and viscosity, with forces, energy alone.
+struct HEMLForceField::BlockFns {
+    using Fn = double (*)(HEMLData&, const Block&, const double*);
+    Fn forcesVisco = nullptr, forces = nullptr, energy = nullptr;
+    bool inlined = true;
+};
+
+namespace {
+
+/// The loops of a material from the one list of built-in laws (elements/LawDispatch.h).
+HEMLForceField::BlockFns loopsFor(const BaseMaterial* m) {
+    return elements::selectForLaw(m, [](auto tag) {
+        using Law = typename decltype(tag)::type;
+        return HEMLForceField::BlockFns{&runLaw<Law, true, true>, &runLaw<Law, true, false>, &runLaw<Law, false, false>,
+                                        !std::is_same_v<Law, elements::GenericLaw>};
+    });
+}
+
+// one block with the loop of its material (or the mass-spring loop)
+template <bool Forces, bool Visco>
+double runOne(HEMLData& d, const Block& b, const std::vector<HEMLForceField::BlockFns>& fns, const double* x) {
+    if (d.massSpring) return runSpring<Forces, Visco>(d, b, x);
+    const HEMLForceField::BlockFns& f = fns[size_t(b.material)];
+    return (Forces ? (Visco ? f.forcesVisco : f.forces) : f.energy)(d, b, x);
 }
 
 // positions (state order, 3 doubles per node) into the internal order (4 per node); call inside a
@@ -89,11 +88,6 @@ const double* copyIn(HEMLData& d, const double* x) {
     return d.xin.data();
 }
 
-double vonMises(const Mat3& s) {
-    const double a = s(0, 0) - s(1, 1), b = s(1, 1) - s(2, 2), c = s(2, 2) - s(0, 0);
-    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s(0, 1) * s(0, 1) + s(1, 2) * s(1, 2) + s(0, 2) * s(0, 2)));
-}
-
 } // namespace
 
 HEMLForceField::HEMLForceField() = default;
@@ -109,61 +103,6 @@ const MeshData* HEMLForceField::meshSource() const {
     return nullptr;
 }
 
-materials::BaseMaterial* HEMLForceField::defaultMaterial() const {
-    if (m_material.get()) return m_material.get();
-    if (m_groupMaterials.isSet() || !node()) return nullptr;
-    return node()->findInContext<BaseMaterial>();
-}
-
-std::vector<HEMLForceField::GroupMaterial> HEMLForceField::parseGroupMaterials() const {
-    std::vector<GroupMaterial> out;
-    if (!m_groupMaterials.isSet()) return out;
-    std::istringstream is(m_groupMaterials.get());
-    std::vector<std::string> tok;
-    for (std::string t; is >> t;) tok.push_back(t);
-    const std::string form = "write pairs of a group (tag number or name) and a material path, e.g. \"1 @liverMat 2 @tumourMat\"";
-    if (tok.empty() || tok.size() % 2) fail(m_groupMaterials, "groupMaterials needs pairs: " + form);
-    const MeshData* mesh = meshSource();
-    for (size_t i = 0; i < tok.size(); i += 2) {
-        GroupMaterial g{};
-        const std::string& key = tok[i];
-        char* end = nullptr;
-        const long tag = std::strtol(key.c_str(), &end, 10);
-        if (end && *end == 0 && !key.empty()) {
-            g.tag = int(tag);
-        } else {
-            bool found = false;
-            if (mesh)
-                for (const auto& [t, name] : mesh->groupNames)
-                    if (name == key) {
-                        g.tag = t;
-                        found = true;
-                    }
-            if (!found) {
-                std::vector<std::string> names;
-                if (mesh)
-                    for (const auto& kv : mesh->groupNames) names.push_back(kv.second);
-                auto close = core::closestMatches(key, names);
-                fail(m_groupMaterials, "group '" + key + "' is neither a tag number nor a group name of the mesh",
-                     close.empty() ? std::vector<std::string>{} : std::vector<std::string>{"did you mean '" + close[0] + "'?"});
-            }
-        }
-        std::string path = tok[i + 1];
-        if (path.empty() || path[0] != '@')
-            fail(m_groupMaterials, "'" + path + "' should be a material path starting with '@': " + form);
-        g.path = path.substr(1);
-        core::Component* c = node() ? node()->resolveComponent(g.path) : nullptr;
-        if (!c) fail(m_groupMaterials, "no component '" + g.path + "' (from '" + path + "') for group '" + key + "'");
-        g.material = dynamic_cast<BaseMaterial*>(c);
-        if (!g.material)
-            fail(m_groupMaterials, "'" + g.path + "' is a " + c->className() + ", not a material, for group '" + key + "'");
-        for (const auto& o : out)
-            if (o.tag == g.tag) fail(m_groupMaterials, "group " + std::to_string(g.tag) + " is given twice");
-        out.push_back(g);
-    }
-    return out;
-}
-
 std::vector<core::Component*> HEMLForceField::dependencies() const {
     std::vector<core::Component*> deps;
     if (!node()) return deps;
@@ -171,8 +110,8 @@ std::vector<core::Component*> HEMLForceField::dependencies() const {
     if (!m_mesh.isSet() && !m_tetraIn.isSet())
         if (auto* topo = node()->findInContext<core::BaseTopology>()) deps.push_back(topo);
     if (!m_stiffness.isSet()) {
-        if (auto* m = defaultMaterial()) deps.push_back(m);
-        for (const auto& g : parseGroupMaterials()) deps.push_back(g.material);
+        if (auto* m = elements::defaultMaterial(*this, m_material, m_groupMaterials)) deps.push_back(m);
+        for (auto* m : elements::listedMaterials(*this, m_groupMaterials)) deps.push_back(m);
     }
     if (auto* v = node()->findLocal<viscoelastic::ViscoelasticProny>()) deps.push_back(v);
     return deps;
@@ -212,78 +151,23 @@ void HEMLForceField::init() {
         if (m_material.get() || m_groupMaterials.isSet())
             fail(m_stiffness, "'stiffness' selects the mass-spring mode, which uses no material: remove 'material'/'groupMaterials' or 'stiffness'");
     } else {
-        const auto groups = parseGroupMaterials();
-        BaseMaterial* def = defaultMaterial();
-        if (groups.empty()) {
-            if (!def) fail("no material: add one (e.g. <NeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>) to the node, set material=\"@name\", or set 'stiffness' for mass-spring");
-            std::fill(m_elementMaterial.begin(), m_elementMaterial.end(), def);
-        } else {
-            if (!mesh || mesh->tetrahedronGroup.size() != m_tets.size())
-                fail(m_groupMaterials, "groupMaterials needs a mesh with a group tag per tetrahedron (mesh=\"@loader.mesh\")");
-            std::map<int, BaseMaterial*> byTag;
-            for (const auto& g : groups) byTag[g.tag] = g.material;
-            for (size_t e = 0; e < m_tets.size(); ++e) {
-                const int tag = mesh->tetrahedronGroup[e];
-                auto it = byTag.find(tag);
-                BaseMaterial* m = it != byTag.end() ? it->second : def;
-                if (!m)
-                    fail(m_groupMaterials, "tetrahedron " + std::to_string(e) + " is in group " + std::to_string(tag) +
-                                               ", which groupMaterials does not list, and 'material' is not set");
-                m_elementMaterial[e] = m;
-            }
-        }
+        // per mesh group, else the default material (the element layer's one rule)
+        m_elementMaterial = elements::assignMaterials(*this, m_groupMaterials,
+                                                      elements::defaultMaterial(*this, m_material, m_groupMaterials), mesh,
+                                                      m_tets.size(), 0)
+                                .tetrahedra;
     }
 
-    // fibre directions per element (input order)
+    // fibre directions per element (input order; empty when no material reads them)
     m_dirA.clear();
     m_dirB.clear();
-    auto fibres = [&](int which, const core::Param<std::string>& arrayParam, std::vector<Vec3>& dirs) {
-        const unsigned bit = which == 0 ? BaseMaterial::UsesI4 : BaseMaterial::UsesI6;
-        bool any = false;
-        for (auto* m : m_elementMaterial) any = any || (m && (m->uses() & bit));
-        if (!any) {
-            if (arrayParam.isSet()) warn("'" + arrayParam.name() + "' is set but no material reads that fibre direction");
-            return;
-        }
-        dirs.assign(m_tets.size(), Vec3::Zero());
-        const std::vector<double>* arr = nullptr;
-        if (arrayParam.isSet()) {
-            if (!mesh) fail(arrayParam, "'" + arrayParam.name() + "' needs a mesh with cell arrays (mesh=\"@loader.mesh\")");
-            auto it = mesh->cellArrays.find(arrayParam.get());
-            if (it == mesh->cellArrays.end()) {
-                std::vector<std::string> names;
-                for (const auto& kv : mesh->cellArrays) names.push_back(kv.first);
-                auto close = core::closestMatches(arrayParam.get(), names);
-                fail(arrayParam, "the mesh has no cell array '" + arrayParam.get() + "'",
-                     close.empty() ? std::vector<std::string>{} : std::vector<std::string>{"did you mean '" + close[0] + "'?"});
-            }
-            arr = &it->second;
-            if (arr->size() != 3 * m_tets.size())
-                fail(arrayParam, "cell array '" + arrayParam.get() + "' has " + std::to_string(arr->size()) +
-                                     " numbers; a fibre direction needs 3 per tetrahedron (" + std::to_string(3 * m_tets.size()) + ")");
-        }
-        for (size_t e = 0; e < m_tets.size(); ++e) {
-            const BaseMaterial* m = m_elementMaterial[e];
-            if (!(m->uses() & bit)) continue;
-            Vec3 a;
-            if (arr) {
-                a = Vec3((*arr)[3 * e], (*arr)[3 * e + 1], (*arr)[3 * e + 2]);
-                const double len = a.norm();
-                if (!(len > 1e-12))
-                    fail(arrayParam, "fibre direction of tetrahedron " + std::to_string(e) + " in '" + arrayParam.get() + "' is zero");
-                a /= len;
-            } else {
-                const Vec3* md = m->fibreDirection(which);
-                if (!md)
-                    fail("material '" + m->name() + "' reads fibre direction " + std::to_string(which + 1) +
-                         " but gives none: set '" + arrayParam.name() + "' to a mesh cell array");
-                a = md->normalized();
-            }
-            dirs[e] = a;
-        }
-    };
-    fibres(0, m_fibreArray, m_dirA);
-    fibres(1, m_fibreArray2, m_dirB);
+    if (!d.massSpring) {
+        const std::vector<const BaseMaterial*> cells(m_elementMaterial.begin(), m_elementMaterial.end());
+        elements::FibreField a = elements::resolveFibres(*this, 0, m_fibreArray, mesh, cells, m_tets.size());
+        elements::FibreField b = elements::resolveFibres(*this, 1, m_fibreArray2, mesh, cells, m_tets.size());
+        if (a.used) m_dirA = std::move(a.dir);
+        if (b.used) m_dirB = std::move(b.dir);
+    }
 
     // viscoelasticity
     m_visco = node() ? node()->findLocal<viscoelastic::ViscoelasticProny>() : nullptr;
@@ -293,6 +177,68 @@ void HEMLForceField::init() {
     precompute(rest);
 }
 
+namespace {
+
+/// The node rows of the blocks and the per-node lists of rows for the ordered sum.
+void buildNodeRows(HEMLData& d, size_t n) {
+    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
+    // to them; then, per node, its rows in block order for the reduction
+    d.rowInternal.clear();
+    std::vector<int>& rowInternal = d.rowInternal;
+    std::vector<int> local(n, -1);
+    for (auto& b : d.blocks) {
+        b.rowBegin = rowInternal.size();
+        std::vector<int> nodes;
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            local[nodes[i]] = int(i);
+            rowInternal.push_back(nodes[i]);
+        }
+        b.rowEnd = rowInternal.size();
+        for (size_t s = b.begin; s < b.end; ++s)
+            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
+    }
+    const size_t rows = rowInternal.size();
+    d.rowNode.resize(rows);
+    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
+    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
+    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
+    d.xin.assign(4 * n, 0.0);
+    d.xrow.assign(4 * rows, 0.0);
+    d.buf.assign(4 * rows, 0.0);
+    d.nodeRowStart.assign(n + 1, 0);
+    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
+    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
+    d.nodeRows.assign(rows, 0);
+    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
+    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
+    d.blockEnergy.assign(d.blocks.size(), 0.0);
+
+}
+
+/// The viscoelastic state of eq. (18)-(20), one value per slot, term and relaxed component.
+void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_t S) {
+    // viscoelastic state
+    d.nTerms = 0;
+    d.nComp = 0;
+    d.Yprev.clear();
+    d.Ycur.clear();
+    d.yComputed = false;
+    if (visco) {
+        d.nTerms = int(visco->termCount());
+        d.relaxIso = visco->relaxesIsochoric();
+        d.relaxVol = visco->relaxesVolumetric();
+        d.nComp = d.relaxIso ? 7 : 1;
+        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
+        d.Ycur = d.Yprev;
+    }
+}
+
+} // namespace
+
 void HEMLForceField::precompute(const Positions& rest) {
     HEMLData& d = *m_data;
     const size_t n = rest.size(), ne = m_tets.size();
@@ -300,7 +246,7 @@ void HEMLForceField::precompute(const Positions& rest) {
     d.nElements = ne;
 
     // node order
-    // reverse Cuthill-McKee (PERFORMANCE.md lesson 5): internal -> input node
+    // reverse Cuthill-McKee (docs/performance.md, lessons: node order): internal -> input node
     d.nodeOf = reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
     d.internalOf.assign(n, 0);
     for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
@@ -319,8 +265,8 @@ void HEMLForceField::precompute(const Positions& rest) {
             matIndex[e] = it->second;
         }
     }
-    m_kinds.clear();
-    for (auto* m : d.materials) m_kinds.push_back(lawKind(m));
+    m_fns.clear();
+    for (auto* m : d.materials) m_fns.push_back(loopsFor(m));
 
     // element order: by material, then by lowest internal node (locality of the block buffers)
     std::vector<int> order(ne);
@@ -401,17 +347,7 @@ void HEMLForceField::precompute(const Positions& rest) {
                  std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
         d.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
         d.invDetV[slot] = 1.0 / det;
-        if (!pad) {
-            // shortest altitude: 3 Vol / largest face area
-            double maxFace = 0;
-            for (int f = 0; f < 4; ++f) {
-                const Vec3& p = rest[t[(f + 1) % 4]];
-                const Vec3& q = rest[t[(f + 2) % 4]];
-                const Vec3& r = rest[t[(f + 3) % 4]];
-                maxFace = std::max(maxFace, 0.5 * (q - p).cross(r - p).norm());
-            }
-            m_altitude[e] = 3.0 * (std::abs(det) / 6.0) / maxFace;
-        }
+        if (!pad) m_altitude[e] = elements::tetAltitude(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]], std::abs(det) / 6.0);
         if (d.massSpring) {
             for (int k = 0; k < 6; ++k) {
                 const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
@@ -440,63 +376,15 @@ void HEMLForceField::precompute(const Positions& rest) {
         }
     }
 
-    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
-    // to them; then, per node, its rows in block order for the reduction
-    d.rowInternal.clear();
-    std::vector<int>& rowInternal = d.rowInternal;
-    std::vector<int> local(n, -1);
-    for (auto& b : d.blocks) {
-        b.rowBegin = rowInternal.size();
-        std::vector<int> nodes;
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-        for (size_t i = 0; i < nodes.size(); ++i) {
-            local[nodes[i]] = int(i);
-            rowInternal.push_back(nodes[i]);
-        }
-        b.rowEnd = rowInternal.size();
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
-    }
-    const size_t rows = rowInternal.size();
-    d.rowNode.resize(rows);
-    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
-    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
-    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
-    d.xin.assign(4 * n, 0.0);
-    d.xrow.assign(4 * rows, 0.0);
-    d.buf.assign(4 * rows, 0.0);
-    d.nodeRowStart.assign(n + 1, 0);
-    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
-    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
-    d.nodeRows.assign(rows, 0);
-    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
-    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
-    d.blockEnergy.assign(d.blocks.size(), 0.0);
-
-    // viscoelastic state
-    d.nTerms = 0;
-    d.nComp = 0;
-    d.Yprev.clear();
-    d.Ycur.clear();
-    d.yComputed = false;
-    if (m_visco) {
-        d.nTerms = int(m_visco->termCount());
-        d.relaxIso = m_visco->relaxesIsochoric();
-        d.relaxVol = m_visco->relaxesVolumetric();
-        d.nComp = d.relaxIso ? 7 : 1;
-        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
-        d.Ycur = d.Yprev;
-    }
+    buildNodeRows(d, n);
+    setUpVisco(d, m_visco, S);
 }
 
 void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
     if (!m_data) fail("used before init()");
     if (state.size() != m_data->nNodes)
-        core::throwSimulationError("[" + path() + "] the state '" + state.name() + "' has " + std::to_string(state.size()) +
-                             " nodes but the force field was set up for " + std::to_string(m_data->nNodes));
+        elements::runtimeError(*this, "the state '" + state.name() + "' has " + std::to_string(state.size()) +
+                                          " nodes but the force field was set up for " + std::to_string(m_data->nNodes));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -514,7 +402,7 @@ void HEMLForceField::beginStep(double, double) {
 
 void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double) {
     checkState(state);
-    if (f.size() != state.size()) core::throwSimulationError("[" + path() + "] force array of the wrong size");
+    if (f.size() != state.size()) elements::runtimeError(*this, "force array of the wrong size");
     addForceRaw(state.x().data()->data(), f.data()->data());
 }
 
@@ -523,7 +411,7 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
     const bool visco = d.nTerms > 0;
     if (visco) {
         if (!m_visco->hasCoefficients())
-            core::throwSimulationError("[" + path() + "] ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
+            elements::runtimeError(*this, "ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
         d.A = m_visco->A();
         d.B = m_visco->B();
     }
@@ -535,7 +423,7 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
         // element blocks, each into its own node rows
 #pragma omp for schedule(dynamic, 1)
         for (size_t b = 0; b < nb; ++b)
-            d.blockEnergy[b] = visco ? runAny<true, true>(d, d.blocks[b], m_kinds, xi) : runAny<true, false>(d, d.blocks[b], m_kinds, xi);
+            d.blockEnergy[b] = visco ? runOne<true, true>(d, d.blocks[b], m_fns, xi) : runOne<true, false>(d, d.blocks[b], m_fns, xi);
         // per node, sum its rows in block order (deterministic for any thread count)
 #pragma omp for schedule(static)
         for (size_t p = 0; p < n; ++p) {
@@ -564,7 +452,7 @@ double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     {
         const double* xi = copyIn(d, x);
 #pragma omp for schedule(dynamic, 1)
-        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runAny<false, false>(d, d.blocks[b], m_kinds, xi);
+        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, d.blocks[b], m_fns, xi);
     }
     double E = 0.0;
     for (double e : d.blockEnergy) E += e;
@@ -602,23 +490,12 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
         const double w2 = *std::max_element(rate.begin(), rate.end());
         return w2 > 0 ? 2.0 / std::sqrt(w2) : inf;
     }
-    double rho = mass->density();
-    if (!std::isfinite(rho)) {
-        double M = 0, V = 0;
-        for (double m : mass->nodalMasses()) M += m;
-        for (size_t s = 0; s < d.nSlots; ++s) V += d.vol[s];
-        rho = V > 0 ? M / V : std::numeric_limits<double>::quiet_NaN();
-    }
-    if (!(rho > 0)) return inf;
-    double dt = inf;
-    std::map<const BaseMaterial*, double> speed;
-    for (size_t e = 0; e < m_tets.size(); ++e) {
-        const BaseMaterial* m = m_elementMaterial[e];
-        auto it = speed.find(m);
-        if (it == speed.end()) it = speed.emplace(m, m->waveSpeed(rho)).first;
-        if (it->second > 0) dt = std::min(dt, m_altitude[e] / it->second);
-    }
-    return dt;
+    // the density, else the total mass over the mesh volume (the element layer's one rule)
+    double V = 0;
+    for (size_t s = 0; s < d.nSlots; ++s) V += d.vol[s];
+    return elements::stableTimeStep(
+        m_tets.size(), [&](size_t e) { return m_altitude[e]; }, [&](size_t e) { return m_elementMaterial[e]; },
+        elements::densityFor(*mass, V));
 }
 
 void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
@@ -660,7 +537,8 @@ void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vecto
         const Mat3 tau = 2.0 * (r.dI1 * Bm + r.dI2 * (in.I1 * Bm - Bm * Bm) + r.dI4 * fa * fa.transpose() +
                                 r.dI6 * fb * fb.transpose()) +
                          Je * (r.dJiso + r.dJvol) * Mat3::Identity();
-        vm.values[e] = vonMises(tau / std::max(Je, J0));
+        const Mat3 sig = tau / std::max(Je, J0);
+        vm.values[e] = elements::vonMises(elements::Sym33<double>{sig(0, 0), sig(1, 1), sig(2, 2), sig(0, 1), sig(1, 2), sig(0, 2)});
     }
     out.push_back(std::move(J));
     if (!m_data->massSpring) out.push_back(std::move(vm));
@@ -673,8 +551,8 @@ const materials::BaseMaterial* HEMLForceField::materialOf(size_t e) const {
 }
 bool HEMLForceField::usesFastPath() const {
     if (!m_data || m_data->massSpring) return true;
-    for (int k : m_kinds)
-        if (k == Generic) return false;
+    for (const auto& f : m_fns)
+        if (!f.inlined) return false;
     return true;
 }
 

@@ -3,6 +3,7 @@
 /// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
 /// virtual call for any other material, or the mass-spring energy of eq. (38)).
 #include "fascia/base/Simd.h"
+#include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
 
 #include <algorithm>
@@ -15,10 +16,10 @@ namespace fascia::heml {
 using simd::DVec;
 using simd::IVec;
 
-/// Elements per chunk of the element loop (two AVX-512 vectors of doubles, PERFORMANCE.md lesson 3).
+/// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lessons: short passes over batches).
 constexpr int kLanes = 16;
 /// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
-/// the mesh only, never on the thread count (DESIGN.md principle 5).
+/// the mesh only, never on the thread count (docs/design.md, determinism).
 constexpr size_t kBlockSize = 1024;
 
 /// Edge k joins local nodes kEdgeA[k] -> kEdgeB[k]: v1 = x1 - x0, v2 = x2 - x0, v3 = x3 - x0,
@@ -60,7 +61,7 @@ struct HEMLData {
     /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
     /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
     /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
-    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (PERFORMANCE.md: bytes per element).
+    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lessons: bytes per element).
     DVec G[6];
     DVec w4[3], w6[3];     ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
     DVec kk[6], len0[6];   ///< mass-spring mode: stiffness share and rest length per edge
@@ -158,16 +159,10 @@ struct SpringEval {
     static constexpr bool spring = true;
     unsigned uses() const { return 0; }
 };
-
-/// Runs one block at positions x (the state's, 3 doubles per node, when d.directGather; else
-/// HEMLData::xin, 4 per node in internal order): forces into the block's node buffer (when Forces)
-/// and its energy.
-/// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
-template <class Eval, bool Forces, bool Visco>
-double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) {
-    Chunk c;
-    double energy = 0.0;
-    // copy the block's node positions in and clear its buffer
+/// Copies the block's node positions into its rows (x: the state's, 3 doubles per node, when
+/// d.directGather; else HEMLData::xin, 4 per node in internal order) and clears its force buffer.
+template <bool Forces>
+FASCIA_INLINE void copyRows(HEMLData& d, const Block& b, const double* x) {
     if (d.directGather) {
         // small meshes: straight from the state's positions (they sit in cache), one barrier less
         for (size_t r = b.rowBegin; r < b.rowEnd; ++r) {
@@ -187,201 +182,220 @@ double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) 
         }
     }
     if constexpr (Forces) std::fill(d.buf.data() + 4 * b.rowBegin, d.buf.data() + 4 * b.rowEnd, 0.0);
+}
+
+/// Edges, squared lengths l_k, invariants (eq. (C.1)) and J of the chunk at e0.
+template <class Eval>
+FASCIA_INLINE void edgesAndInvariants(HEMLData& d, Chunk& c, size_t e0, bool useI4, bool useI6) {
+    const double* invDetV = d.invDetV.data() + e0;
+    // (GCC ivdep, not omp simd: omp simd would privatise the small local arrays into memory)
+#pragma GCC ivdep
+    for (int j = 0; j < kLanes; ++j) {
+        double ev[6][3], l[6];
+        for (int k = 0; k < 6; ++k) {
+            for (int q = 0; q < 3; ++q) ev[k][q] = c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j];
+            l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
+            c.l[k][j] = l[k];
+            for (int q = 0; q < 3; ++q) c.ev[k][q][j] = ev[k][q];
+        }
+        // signed volume ratio: det(v1, v2, v3) / det(V1, V2, V3)
+        const double det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
+                           ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
+                           ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
+        c.J[j] = det * invDetV[j];
+        if constexpr (!Eval::spring) {
+            // D(l) of eq. (A.4): D = V^T C V
+            const double D11 = l[0], D22 = l[1], D33 = l[2];
+            const double D12 = 0.5 * (l[0] + l[1] - l[3]), D23 = 0.5 * (l[1] + l[2] - l[4]), D13 = 0.5 * (l[0] + l[2] - l[5]);
+            const double g11 = d.G[0][e0 + j], g22 = d.G[1][e0 + j], g33 = d.G[2][e0 + j];
+            const double g12 = d.G[3][e0 + j], g23 = d.G[4][e0 + j], g13 = d.G[5][e0 + j];
+            // I1 = vtr.l = tr(D G)   (eq. (C.1))
+            const double I1 = D11 * g11 + D22 * g22 + D33 * g33 + 2.0 * (D12 * g12 + D23 * g23 + D13 * g13);
+            // H = G D G, so that (Mtr l)_k = tr(D_k H) and tr(C^2) = l^T Mtr l = tr(D H)
+            const double P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
+                         P13 = g11 * D13 + g12 * D23 + g13 * D33;
+            const double P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
+                         P23 = g12 * D13 + g22 * D23 + g23 * D33;
+            const double P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
+                         P33 = g13 * D13 + g23 * D23 + g33 * D33;
+            const double H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
+                         H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
+                         H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
+            const double trC2 = D11 * H11 + D22 * H22 + D33 * H33 + 2.0 * (D12 * H12 + D23 * H23 + D13 * H13);
+            c.H[0][j] = H11;
+            c.H[1][j] = H22;
+            c.H[2][j] = H33;
+            c.H[3][j] = H12;
+            c.H[4][j] = H23;
+            c.H[5][j] = H13;
+            c.I1[j] = I1;
+            c.I2[j] = 0.5 * (I1 * I1 - trC2);
+            double I4 = 1.0, I6 = 1.0;
+            if (useI4) {
+                // I4 = a0.C a0 = w.D w, w = V^-1 a0
+                const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j];
+                I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+            }
+            if (useI6) {
+                const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j];
+                I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+            }
+            c.I4[j] = I4;
+            c.I6[j] = I6;
+        }
+    }
+}
+
+/// Generalised forces g_k = Vol dW/dl_k (eq. (29), (C.2)-(C.3)) and Vol dW/dJ of the chunk at e0.
+template <class Eval>
+FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI4, bool useI6) {
+    const double* vol = d.vol.data() + e0;
+#pragma GCC ivdep
+    for (int j = 0; j < kLanes; ++j) {
+        double g[6], Qiso, Qvol, W;
+        const double V = vol[j];
+        if constexpr (Eval::spring) {
+            // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
+            W = 0.0;
+            for (int k = 0; k < 6; ++k) {
+                const double L2 = c.l[k][j] > 1e-300 ? c.l[k][j] : 1e-300;
+                const double len = std::sqrt(L2);
+                const double kk = d.kk[k][e0 + j], l0 = d.len0[k][e0 + j];
+                W += 0.5 * kk * (len - l0) * (len - l0);
+                g[k] = 0.5 * kk * (1.0 - l0 / len);
+            }
+            Qiso = Qvol = 0.0;
+        } else {
+            W = V * c.W[j];
+            // g_k = Vol (dI1 vtr_k + dI2 (I1 vtr_k - (Mtr l)_k) + dI4 a0.C_k a0 + dI6 b0.C_k b0)   (eq. (C.2)-(C.3))
+            //     = Vol tr(D_k Sg),  Sg = dI1 G + dI2 (I1 G - H) + dI4 w w^T + dI6 u u^T
+            const double I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
+            const double a = dI1 + dI2 * I1;
+            double Sg[6];
+            for (int q = 0; q < 6; ++q) Sg[q] = a * d.G[q][e0 + j] - dI2 * c.H[q][j];
+            // Sg += s w w^T (6 components), w = V^-1 a0 or V^-1 b0
+            const auto addFibre = [&](const DVec* w, double sf) {
+                const double w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
+                Sg[0] += sf * w1 * w1;
+                Sg[1] += sf * w2 * w2;
+                Sg[2] += sf * w3 * w3;
+                Sg[3] += sf * w1 * w2;
+                Sg[4] += sf * w2 * w3;
+                Sg[5] += sf * w1 * w3;
+            };
+            if (useI4) addFibre(d.w4, c.dI4[j]);
+            if (useI6) addFibre(d.w6, c.dI6[j]);
+            traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
+            for (int k = 0; k < 6; ++k) g[k] *= V;
+            Qiso = V * c.dJiso[j];
+            Qvol = V * c.dJvol[j];
+        }
+        c.We[j] = W;
+        for (int k = 0; k < 6; ++k) c.gk[k][j] = g[k];
+        c.Qi[j] = Qiso;
+        c.Qv[j] = Qvol;
+    }
+}
+
+/// Viscoelastic relaxation of the chunk's generalised forces (see HEMLForceField.h).
+FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0) {
+    // eq. (20): gamma_i^n = A_i f^n + B_i gamma_i^(n-1); eq. (18): f - sum_i gamma_i, on the
+    // generalised forces: g_k and the isochoric J part (apply = isochoric), the volumetric J
+    // part (volumetric), or g_k and the whole J part (both)
+    double rel[7][kLanes];
+    const int nc = d.nComp;
+    for (int q = 0; q < nc; ++q)
+        for (int j = 0; j < kLanes; ++j) {
+            const double src = !d.relaxIso ? c.Qv[j] : q < 6 ? c.gk[q][j] : d.relaxVol ? c.Qi[j] + c.Qv[j] : c.Qi[j];
+            rel[q][j] = src;
+        }
+    double sum[7][kLanes] = {};
+    for (int t = 0; t < d.nTerms; ++t) {
+        const double A = d.A[t], Bt = d.B[t];
+        for (int q = 0; q < nc; ++q) {
+            const double* yp = d.Yprev[size_t(t * nc + q)].data() + e0;
+            double* yc = d.Ycur[size_t(t * nc + q)].data() + e0;
+#pragma GCC ivdep
+            for (int j = 0; j < kLanes; ++j) {
+                const double y = A * rel[q][j] + Bt * yp[j];
+                yc[j] = y;
+                sum[q][j] += y;
+            }
+        }
+    }
+    if (d.relaxIso) {
+        for (int k = 0; k < 6; ++k)
+            for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
+        for (int j = 0; j < kLanes; ++j) c.Qi[j] -= sum[6][j];  // (Qi + Qv) relaxed as a whole when both
+    } else {
+        for (int j = 0; j < kLanes; ++j) c.Qv[j] -= sum[0][j];
+    }
+}
+
+/// Nodal forces of the chunk at e0 from its generalised forces.
+FASCIA_INLINE void nodalForces(HEMLData& d, Chunk& c, size_t e0) {
+    const double* invDetV = d.invDetV.data() + e0;
+#pragma GCC ivdep
+    for (int j = 0; j < kLanes; ++j) {
+        double g[6];
+        for (int k = 0; k < 6; ++k) g[k] = c.gk[k][j];
+        const double Qiso = c.Qi[j], Qvol = c.Qv[j];
+        double f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        // links: -2 g_k (x_a - x_b) on a, the opposite on b (eq. (12)-(13), (B.1)-(B.2))
+        for (int k = 0; k < 6; ++k)
+            for (int q = 0; q < 3; ++q) {
+                const double t = 2.0 * g[k] * c.ev[k][q][j];
+                f[kEdgeA[k]][q] += t;
+                f[kEdgeB[k]][q] -= t;
+            }
+        // volume: -Vol dW/dJ dJ/dx_i, dJ/dx_i = d det(v)/dx_i / det(V) (eq. (C.4))
+        const double cJ = (Qiso + Qvol) * invDetV[j];
+        double v1[3], v2[3], v3[3];
+        for (int q = 0; q < 3; ++q) {
+            v1[q] = c.ev[0][q][j];
+            v2[q] = c.ev[1][q][j];
+            v3[q] = c.ev[2][q][j];
+        }
+        const double g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
+        const double g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
+        const double g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
+        for (int q = 0; q < 3; ++q) {
+            f[1][q] -= cJ * g1[q];
+            f[2][q] -= cJ * g2[q];
+            f[3][q] -= cJ * g3[q];
+            f[0][q] += cJ * (g1[q] + g2[q] + g3[q]);
+        }
+        for (int a = 0; a < 4; ++a)
+            for (int q = 0; q < 3; ++q) c.f[a][q][j] = f[a][q];
+    }
+}
+
+/// Runs one block at positions x (the state's, 3 doubles per node, when d.directGather; else
+/// HEMLData::xin, 4 per node in internal order): forces into the block's node buffer (when Forces)
+/// and its energy.
+/// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
+template <class Eval, bool Forces, bool Visco>
+double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) {
+    Chunk c;
+    double energy = 0.0;
+    copyRows<Forces>(d, b, x);
     const double* xin = d.xrow.data() + 4 * b.rowBegin;
     double* buf = d.buf.data() + 4 * b.rowBegin;
     const unsigned uses = eval.uses();
     const bool useI4 = (uses & materials::BaseMaterial::UsesI4) != 0;
     const bool useI6 = (uses & materials::BaseMaterial::UsesI6) != 0;
-
     for (size_t e0 = b.begin; e0 < b.end; e0 += kLanes) {
         // gather the four nodes of each element (node rows padded to 4 doubles, in-register
-        // transposes: PERFORMANCE.md lesson 2)
+        // transposes: docs/performance.md, lessons: SIMD gather)
         for (int j = 0; j < kLanes; j += 4)
             for (int a = 0; a < 4; ++a)
                 simd::gather4(xin, d.node[a].data() + e0 + j, 1, &c.px[a][0][j], &c.px[a][1][j], &c.px[a][2][j]);
-
-        // edges, squared lengths l_k, invariants (eq. (C.1)) and J
-        const double* vol = d.vol.data() + e0;
-        const double* invDetV = d.invDetV.data() + e0;
-        // (GCC ivdep, not omp simd: omp simd would privatise the small local arrays into memory)
-#pragma GCC ivdep
-        for (int j = 0; j < kLanes; ++j) {
-            double ev[6][3], l[6];
-            for (int k = 0; k < 6; ++k) {
-                for (int q = 0; q < 3; ++q) ev[k][q] = c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j];
-                l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
-                c.l[k][j] = l[k];
-                for (int q = 0; q < 3; ++q) c.ev[k][q][j] = ev[k][q];
-            }
-            // signed volume ratio: det(v1, v2, v3) / det(V1, V2, V3)
-            const double det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
-                               ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
-                               ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
-            c.J[j] = det * invDetV[j];
-            if constexpr (!Eval::spring) {
-                // D(l) of eq. (A.4): D = V^T C V
-                const double D11 = l[0], D22 = l[1], D33 = l[2];
-                const double D12 = 0.5 * (l[0] + l[1] - l[3]), D23 = 0.5 * (l[1] + l[2] - l[4]), D13 = 0.5 * (l[0] + l[2] - l[5]);
-                const double g11 = d.G[0][e0 + j], g22 = d.G[1][e0 + j], g33 = d.G[2][e0 + j];
-                const double g12 = d.G[3][e0 + j], g23 = d.G[4][e0 + j], g13 = d.G[5][e0 + j];
-                // I1 = vtr.l = tr(D G)   (eq. (C.1))
-                const double I1 = D11 * g11 + D22 * g22 + D33 * g33 + 2.0 * (D12 * g12 + D23 * g23 + D13 * g13);
-                // H = G D G, so that (Mtr l)_k = tr(D_k H) and tr(C^2) = l^T Mtr l = tr(D H)
-                const double P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
-                             P13 = g11 * D13 + g12 * D23 + g13 * D33;
-                const double P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
-                             P23 = g12 * D13 + g22 * D23 + g23 * D33;
-                const double P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
-                             P33 = g13 * D13 + g23 * D23 + g33 * D33;
-                const double H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
-                             H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
-                             H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
-                const double trC2 = D11 * H11 + D22 * H22 + D33 * H33 + 2.0 * (D12 * H12 + D23 * H23 + D13 * H13);
-                c.H[0][j] = H11;
-                c.H[1][j] = H22;
-                c.H[2][j] = H33;
-                c.H[3][j] = H12;
-                c.H[4][j] = H23;
-                c.H[5][j] = H13;
-                c.I1[j] = I1;
-                c.I2[j] = 0.5 * (I1 * I1 - trC2);
-                double I4 = 1.0, I6 = 1.0;
-                if (useI4) {
-                    // I4 = a0.C a0 = w.D w, w = V^-1 a0
-                    const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j];
-                    I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
-                }
-                if (useI6) {
-                    const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j];
-                    I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
-                }
-                c.I4[j] = I4;
-                c.I6[j] = I6;
-            }
-        }
-
-        // the law
-        if constexpr (!Eval::spring) eval(c, d.J0);
-
-        // generalised forces g_k = Vol dW/dl_k (eq. (29), (C.2)-(C.3)) and Vol dW/dJ
-#pragma GCC ivdep
-        for (int j = 0; j < kLanes; ++j) {
-            double g[6], Qiso, Qvol, W;
-            const double V = vol[j];
-            if constexpr (Eval::spring) {
-                // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
-                W = 0.0;
-                for (int k = 0; k < 6; ++k) {
-                    const double L2 = c.l[k][j] > 1e-300 ? c.l[k][j] : 1e-300;
-                    const double len = std::sqrt(L2);
-                    const double kk = d.kk[k][e0 + j], l0 = d.len0[k][e0 + j];
-                    W += 0.5 * kk * (len - l0) * (len - l0);
-                    g[k] = 0.5 * kk * (1.0 - l0 / len);
-                }
-                Qiso = Qvol = 0.0;
-            } else {
-                W = V * c.W[j];
-                // g_k = Vol (dI1 vtr_k + dI2 (I1 vtr_k - (Mtr l)_k) + dI4 a0.C_k a0 + dI6 b0.C_k b0)   (eq. (C.2)-(C.3))
-                //     = Vol tr(D_k Sg),  Sg = dI1 G + dI2 (I1 G - H) + dI4 w w^T + dI6 u u^T
-                const double I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
-                const double a = dI1 + dI2 * I1;
-                double Sg[6];
-                for (int q = 0; q < 6; ++q) Sg[q] = a * d.G[q][e0 + j] - dI2 * c.H[q][j];
-                // Sg += s w w^T (6 components), w = V^-1 a0 or V^-1 b0
-                const auto addFibre = [&](const DVec* w, double sf) {
-                    const double w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
-                    Sg[0] += sf * w1 * w1;
-                    Sg[1] += sf * w2 * w2;
-                    Sg[2] += sf * w3 * w3;
-                    Sg[3] += sf * w1 * w2;
-                    Sg[4] += sf * w2 * w3;
-                    Sg[5] += sf * w1 * w3;
-                };
-                if (useI4) addFibre(d.w4, c.dI4[j]);
-                if (useI6) addFibre(d.w6, c.dI6[j]);
-                traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
-                for (int k = 0; k < 6; ++k) g[k] *= V;
-                Qiso = V * c.dJiso[j];
-                Qvol = V * c.dJvol[j];
-            }
-            c.We[j] = W;
-            for (int k = 0; k < 6; ++k) c.gk[k][j] = g[k];
-            c.Qi[j] = Qiso;
-            c.Qv[j] = Qvol;
-        }
-
-        if constexpr (Forces && Visco) {
-            // eq. (20): gamma_i^n = A_i f^n + B_i gamma_i^(n-1); eq. (18): f - sum_i gamma_i, on the
-            // generalised forces: g_k and the isochoric J part (apply = isochoric), the volumetric J
-            // part (volumetric), or g_k and the whole J part (both)
-            double rel[7][kLanes];
-            const int nc = d.nComp;
-            for (int q = 0; q < nc; ++q)
-                for (int j = 0; j < kLanes; ++j) {
-                    const double src = !d.relaxIso ? c.Qv[j] : q < 6 ? c.gk[q][j] : d.relaxVol ? c.Qi[j] + c.Qv[j] : c.Qi[j];
-                    rel[q][j] = src;
-                }
-            double sum[7][kLanes] = {};
-            for (int t = 0; t < d.nTerms; ++t) {
-                const double A = d.A[t], Bt = d.B[t];
-                for (int q = 0; q < nc; ++q) {
-                    const double* yp = d.Yprev[size_t(t * nc + q)].data() + e0;
-                    double* yc = d.Ycur[size_t(t * nc + q)].data() + e0;
-#pragma GCC ivdep
-                    for (int j = 0; j < kLanes; ++j) {
-                        const double y = A * rel[q][j] + Bt * yp[j];
-                        yc[j] = y;
-                        sum[q][j] += y;
-                    }
-                }
-            }
-            if (d.relaxIso) {
-                for (int k = 0; k < 6; ++k)
-                    for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
-                for (int j = 0; j < kLanes; ++j) c.Qi[j] -= sum[6][j];  // (Qi + Qv) relaxed as a whole when both
-            } else {
-                for (int j = 0; j < kLanes; ++j) c.Qv[j] -= sum[0][j];
-            }
-        }
-
-        // nodal forces
-        if constexpr (Forces) {
-#pragma GCC ivdep
-            for (int j = 0; j < kLanes; ++j) {
-                double g[6];
-                for (int k = 0; k < 6; ++k) g[k] = c.gk[k][j];
-                const double Qiso = c.Qi[j], Qvol = c.Qv[j];
-                double f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-                // links: -2 g_k (x_a - x_b) on a, the opposite on b (eq. (12)-(13), (B.1)-(B.2))
-                for (int k = 0; k < 6; ++k)
-                    for (int q = 0; q < 3; ++q) {
-                        const double t = 2.0 * g[k] * c.ev[k][q][j];
-                        f[kEdgeA[k]][q] += t;
-                        f[kEdgeB[k]][q] -= t;
-                    }
-                // volume: -Vol dW/dJ dJ/dx_i, dJ/dx_i = d det(v)/dx_i / det(V) (eq. (C.4))
-                const double cJ = (Qiso + Qvol) * invDetV[j];
-                double v1[3], v2[3], v3[3];
-                for (int q = 0; q < 3; ++q) {
-                    v1[q] = c.ev[0][q][j];
-                    v2[q] = c.ev[1][q][j];
-                    v3[q] = c.ev[2][q][j];
-                }
-                const double g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
-                const double g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
-                const double g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
-                for (int q = 0; q < 3; ++q) {
-                    f[1][q] -= cJ * g1[q];
-                    f[2][q] -= cJ * g2[q];
-                    f[3][q] -= cJ * g3[q];
-                    f[0][q] += cJ * (g1[q] + g2[q] + g3[q]);
-                }
-                for (int a = 0; a < 4; ++a)
-                    for (int q = 0; q < 3; ++q) c.f[a][q][j] = f[a][q];
-            }
-        }
+        edgesAndInvariants<Eval>(d, c, e0, useI4, useI6);
+        if constexpr (!Eval::spring) eval(c, d.J0);  // the law
+        generalisedForces<Eval>(d, c, e0, useI4, useI6);
+        if constexpr (Forces && Visco) relax(d, c, e0);
+        if constexpr (Forces) nodalForces(d, c, e0);
         for (int j = 0; j < kLanes; ++j) energy += c.We[j];
-
         // scatter into the block's node buffer, in a fixed order (each row loaded, added and stored
         // before the next, so elements sharing a node add up correctly)
         if constexpr (Forces) {

@@ -1,4 +1,4 @@
-#include "HEMLForceField.h"
+#include "fascia/heml/HEMLForceField.h"
 #include "fascia/plugin/Plugin.h"
 
 static void registerAll(fascia::core::Registry& r) {

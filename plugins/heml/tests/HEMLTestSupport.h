@@ -1,15 +1,8 @@
 #pragma once
 // Scenes built in code for the HEMLForceField tests (the mechanics plugin is not needed): a bare
 // mechanical state and mass, jittered cube meshes, every built-in material.
-#include "HEMLForceField.h"
-#include "fascia/materials/CompressibleMooneyRivlin.h"
-#include "fascia/materials/CompressibleNeoHookean.h"
-#include "fascia/materials/IncompressibleMooneyRivlin.h"
-#include "fascia/materials/IncompressibleNeoHookean.h"
-#include "fascia/materials/NeoHookean.h"
-#include "fascia/materials/Orthotropic.h"
-#include "fascia/materials/StVenantKirchhoff.h"
-#include "fascia/materials/TransverselyIsotropic.h"
+#include "fascia/heml/HEMLForceField.h"
+#include "fascia/materials/BuiltinMaterials.h"
 #include "fascia/scene/Node.h"
 
 #include <memory>
@@ -67,64 +60,28 @@ inline MeshData cubeMesh(int nx, int ny, int nz, double h = 0.01, double jitter 
     return m;
 }
 
-inline const char* const kMaterials[] = {"StVenantKirchhoff",      "IncompressibleNeoHookean", "IncompressibleMooneyRivlin",
-                                         "CompressibleNeoHookean", "CompressibleMooneyRivlin", "NeoHookean",
-                                         "TransverselyIsotropic",  "Orthotropic"};
+/// Every built-in material, from the one list (fascia/materials/BuiltinMaterials.h).
+inline const std::vector<std::string> kMaterials = materials::builtinMaterialNames();
 
-/// Adds a material to a node (not initialised).
+/// Parameters of the HEML tests where they differ from the material's own example (kExample).
+inline std::vector<std::pair<std::string, std::string>> hemlParams(const std::string& type) {
+    if (type == "StVenantKirchhoff") return {{"youngModulus", "3000"}, {"poissonRatio", "0.3"}};
+    if (type == "IncompressibleMooneyRivlin") return {{"C1", "400"}, {"C2", "150"}};
+    if (type == "CompressibleNeoHookean") return {{"mu", "1000"}, {"lambda", "4000"}};
+    if (type == "CompressibleMooneyRivlin") return {{"C1", "400"}, {"C2", "150"}, {"kappa", "20000"}};
+    if (type == "TransverselyIsotropic") return {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "2000"}, {"direction", "1 1 0.5"}};
+    if (type == "Orthotropic")
+        return {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "2000"}, {"eta2", "700"}, {"direction", "1 1 0"}, {"direction2", "-1 1 0"}};
+    return materials::exampleParameters(type);
+}
+
+/// Adds a built-in material to a node (not initialised).
 inline materials::BaseMaterial& addMaterial(core::Node& n, const std::string& type, const std::string& name) {
-    using namespace materials;
-    if (type == "StVenantKirchhoff") {
-        auto& m = n.add<StVenantKirchhoff>(name);
-        m.m_E.set(3000);
-        m.m_nu.set(0.3);
-        return m;
-    }
-    if (type == "IncompressibleNeoHookean") {
-        auto& m = n.add<IncompressibleNeoHookean>(name);
-        m.m_C1.set(500);
-        return m;
-    }
-    if (type == "IncompressibleMooneyRivlin") {
-        auto& m = n.add<IncompressibleMooneyRivlin>(name);
-        m.m_C1.set(400);
-        m.m_C2.set(150);
-        return m;
-    }
-    if (type == "CompressibleNeoHookean") {
-        auto& m = n.add<CompressibleNeoHookean>(name);
-        m.m_mu.set(1000);
-        m.m_lambda.set(4000);
-        return m;
-    }
-    if (type == "CompressibleMooneyRivlin") {
-        auto& m = n.add<CompressibleMooneyRivlin>(name);
-        m.m_C1.set(400);
-        m.m_C2.set(150);
-        m.m_kappa.set(20000);
-        return m;
-    }
-    if (type == "NeoHookean") {
-        auto& m = n.add<NeoHookean>(name);
-        m.m_mu.set(1000);
-        m.m_kappa.set(20000);
-        return m;
-    }
-    if (type == "TransverselyIsotropic") {
-        auto& m = n.add<TransverselyIsotropic>(name);
-        m.m_mu.set(1000);
-        m.m_kappa.set(20000);
-        m.m_eta.set(2000);
-        m.m_dir.set(Vec3(1, 1, 0.5));
-        return m;
-    }
-    auto& m = n.add<Orthotropic>(name);
-    m.m_mu.set(1000);
-    m.m_kappa.set(20000);
-    m.m_eta.set(2000);
-    m.m_eta2.set(700);
-    m.m_dir.set(Vec3(1, 1, 0));
-    m.m_dir2.set(Vec3(-1, 1, 0.0));
+    auto made = materials::createBuiltinMaterial(type);
+    if (!made) throw std::runtime_error("unknown material " + type);
+    made->setName(name);
+    auto& m = static_cast<materials::BaseMaterial&>(n.addComponent(std::move(made)));
+    for (const auto& [k, v] : hemlParams(type)) m.findParam(k)->read(v, {});
     return m;
 }
 

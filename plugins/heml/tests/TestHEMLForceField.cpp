@@ -2,7 +2,7 @@
 // mass-spring degenerate case (HEML section 5.3), flat/inverted elements (section 4.4),
 // determinism across thread counts, viscoelasticity (section 3.5), parameters.
 #include "HEMLTestSupport.h"
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 #include "fascia/materials/Conformance.h"
 
 #include <catch2/catch.hpp>
@@ -78,7 +78,7 @@ struct Wrapped : materials::BaseMaterial {
 } // namespace
 
 TEST_CASE("every material passes the conformance harness through HEMLForceField", "[HEMLForceField]") {
-    const std::string name = GENERATE(from_range(std::begin(kMaterials), std::end(kMaterials)));
+    const std::string name = GENERATE(from_range(kMaterials));
     const bool generic = GENERATE(false, true);
     const MeshData mesh = cubeMesh(3, 2, 2);
     Scene s(mesh);
@@ -103,7 +103,7 @@ TEST_CASE("every material passes the conformance harness through HEMLForceField"
 }
 
 TEST_CASE("HEML forces equal a direct finite-element computation f = -Vol P grad N", "[HEMLForceField]") {
-    const std::string name = GENERATE(from_range(std::begin(kMaterials), std::end(kMaterials)));
+    const std::string name = GENERATE(from_range(kMaterials));
     const MeshData mesh = cubeMesh(3, 3, 2);
     Scene s(mesh);
     addMaterial(s.root, name, "mat");

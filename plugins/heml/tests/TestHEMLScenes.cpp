@@ -2,7 +2,7 @@
 // uniaxial compression and stretch of a cube against the closed forms of Analytic.h (HEML section
 // 5.1), and release of a cube crushed through J = 0 (HEML section 4.4).
 #include "Analytic.h"
-#include "HEMLForceField.h"
+#include "fascia/heml/HEMLForceField.h"
 #include "fascia/sim/Simulation.h"
 
 #include <catch2/catch.hpp>

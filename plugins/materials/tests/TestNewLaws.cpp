@@ -4,8 +4,8 @@
 // stretches, simple shear, pure dilatation) at law level and through TLEDForceField and
 // HEMLForceField; the conformance harness through both force fields; moduli and stable time steps;
 // located parameter errors; the registry's descriptions (what --list and --describe print).
-#include "HEMLForceField.h"
-#include "TLEDForceField.h"
+#include "fascia/heml/HEMLForceField.h"
+#include "fascia/tled/TLEDForceField.h"
 
 #include "fascia/materials/ArrudaBoyce.h"
 #include "fascia/materials/Conformance.h"

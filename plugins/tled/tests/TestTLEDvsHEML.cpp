@@ -2,7 +2,7 @@
 // same law, mesh and positions their nodal forces must agree to round-off (DESIGN.md principle 3).
 #include "TledTestUtil.h"
 
-#include "HEMLForceField.h"
+#include "fascia/heml/HEMLForceField.h"
 
 #include <catch2/catch.hpp>
 

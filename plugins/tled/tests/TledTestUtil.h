@@ -1,18 +1,11 @@
 #pragma once
 // Helpers for the TLEDForceField tests: a bare mechanical state and mass, small structured meshes,
 // materials built in code, and an independent (Eigen) evaluation of S = 2 dW/dC.
-#include "TLEDForceField.h"
-#include "ViscoelasticProny.h"
+#include "fascia/tled/TLEDForceField.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include "fascia/materials/Conformance.h"
-#include "fascia/materials/CompressibleMooneyRivlin.h"
-#include "fascia/materials/CompressibleNeoHookean.h"
-#include "fascia/materials/IncompressibleMooneyRivlin.h"
-#include "fascia/materials/IncompressibleNeoHookean.h"
-#include "fascia/materials/NeoHookean.h"
-#include "fascia/materials/Orthotropic.h"
-#include "fascia/materials/StVenantKirchhoff.h"
-#include "fascia/materials/TransverselyIsotropic.h"
+#include "fascia/materials/BuiltinMaterials.h"
 #include "fascia/scene/Node.h"
 
 #include <Eigen/Dense>
@@ -62,40 +55,23 @@ inline void setParams(core::Component& c, const ParamList& params) {
 /// Adds one of the built-in materials by class name, with parameters, and initialises it.
 inline materials::BaseMaterial& addMaterial(core::Node& n, const std::string& type, const ParamList& params,
                                             const std::string& name = "material") {
-    materials::BaseMaterial* m = nullptr;
-    if (type == "StVenantKirchhoff") m = &n.add<materials::StVenantKirchhoff>(name);
-    else if (type == "IncompressibleNeoHookean") m = &n.add<materials::IncompressibleNeoHookean>(name);
-    else if (type == "IncompressibleMooneyRivlin") m = &n.add<materials::IncompressibleMooneyRivlin>(name);
-    else if (type == "CompressibleNeoHookean") m = &n.add<materials::CompressibleNeoHookean>(name);
-    else if (type == "CompressibleMooneyRivlin") m = &n.add<materials::CompressibleMooneyRivlin>(name);
-    else if (type == "NeoHookean") m = &n.add<materials::NeoHookean>(name);
-    else if (type == "TransverselyIsotropic") m = &n.add<materials::TransverselyIsotropic>(name);
-    else if (type == "Orthotropic") m = &n.add<materials::Orthotropic>(name);
-    else throw std::runtime_error("unknown material " + type);
-    m->setClassName(type);
+    // any built-in material, from the one list (fascia/materials/BuiltinMaterials.h)
+    auto made = materials::createBuiltinMaterial(type);
+    if (!made) throw std::runtime_error("unknown material " + type);
+    made->setName(name);
+    auto* m = static_cast<materials::BaseMaterial*>(&n.addComponent(std::move(made)));
     setParams(*m, params);
     m->init();
     return *m;
 }
 
-/// Moderate parameters for every built-in material (conformance sweeps).
+/// Moderate parameters for every built-in material (conformance sweeps): its kExample.
 inline ParamList defaultParams(const std::string& type) {
-    if (type == "StVenantKirchhoff") return {{"youngModulus", "3000"}, {"poissonRatio", "0.45"}};
-    if (type == "IncompressibleNeoHookean") return {{"C1", "500"}};
-    if (type == "IncompressibleMooneyRivlin") return {{"C1", "400"}, {"C2", "100"}};
-    if (type == "CompressibleNeoHookean") return {{"mu", "1000"}, {"lambda", "9000"}};
-    if (type == "CompressibleMooneyRivlin") return {{"C1", "400"}, {"C2", "100"}, {"kappa", "20000"}};
-    if (type == "NeoHookean") return {{"mu", "1000"}, {"kappa", "20000"}};
-    if (type == "TransverselyIsotropic") return {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "3000"}, {"direction", "1 1 0"}};
-    if (type == "Orthotropic")
-        return {{"mu", "1000"}, {"kappa", "20000"}, {"eta", "3000"}, {"eta2", "1500"}, {"direction", "1 0 0"}, {"direction2", "0 1 0"}};
-    return {};
+    return materials::exampleParameters(type);  // the material's own example (kExample)
 }
 
 inline const std::vector<std::string>& allMaterialTypes() {
-    static const std::vector<std::string> t = {"StVenantKirchhoff", "IncompressibleNeoHookean", "IncompressibleMooneyRivlin",
-                                               "CompressibleNeoHookean", "CompressibleMooneyRivlin", "NeoHookean",
-                                               "TransverselyIsotropic", "Orthotropic"};
+    static const std::vector<std::string> t = materials::builtinMaterialNames();
     return t;
 }
 

@@ -1,6 +1,6 @@
 // Tests of ViscoelasticProny: parameter checks, TLED eq. (30) coefficients, and the discrete
 // recurrence against the exact relaxation function (TLED eq. (7)).
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include "fascia/base/Error.h"
 #include "fascia/scene/Node.h"

@@ -2,7 +2,7 @@
 /// Helpers shared by the element loops of the force fields (HEML, TLED and plugins): 64-byte
 /// aligned storage, and the move of node data between node rows (4 doubles per node, the 4th is
 /// padding) and structure-of-arrays batches of elements with in-register transposes
-/// (measured here: hardware gathers and masked scatters are slower, see docs/performance.md).
+/// (hardware gathers and masked scatters are slower here: docs/performance.md, lessons: SIMD gather).
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>

@@ -64,7 +64,16 @@ struct ArrudaBoyceLaw {
 /// Stress-free at rest.
 class ArrudaBoyce : public Material<ArrudaBoyceLaw> {
 public:
-    void init() override;
+    static constexpr const char* kName = "ArrudaBoyce";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;lambdaM=2;kappa=20000";
+    static constexpr const char* kDescription =
+        "Arruda-Boyce eight-chain mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2, C = 1/2, 1/20, 11/1050, 19/7000, 519/673750 (Arruda-Boyce 1993, NiftySim)";
+    void init() override {
+        m_law.mu = m_mu.get();
+        m_law.lambdaM = m_lambdaM.get();
+        m_law.kappa = m_kappa.get();
+    }
     double shearModulus() const override { return m_law.initialShearModulus(); }
     double bulkModulus() const override { return m_law.kappa; }
 

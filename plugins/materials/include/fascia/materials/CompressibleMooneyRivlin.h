@@ -8,6 +8,10 @@ namespace fascia::materials {
 /// (volumetric term kappa/2 (J - 1)^2). Stress-free at rest; shear modulus 2 (C1 + C2), bulk kappa.
 class CompressibleMooneyRivlin : public Material<CompressibleMooneyRivlinLaw> {
 public:
+    static constexpr const char* kName = "CompressibleMooneyRivlin";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "C1=400;C2=100;kappa=20000";
+    static constexpr const char* kDescription = "Mooney-Rivlin C1 (I1bar - 3) + C2 (I2bar - 3) + kappa/2 (J - 1)^2";
     void init() override;
     double shearModulus() const override { return 2.0 * (m_law.C1 + m_law.C2); }
     double bulkModulus() const override { return m_law.kappa; }

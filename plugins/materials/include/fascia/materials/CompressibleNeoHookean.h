@@ -9,6 +9,10 @@ namespace fascia::materials {
 /// (2 C1 - mu) I at rest (warned). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
 class CompressibleNeoHookean : public Material<CompressibleNeoHookeanLaw> {
 public:
+    static constexpr const char* kName = "CompressibleNeoHookean";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;lambda=9000";
+    static constexpr const char* kDescription = "compressible neo-Hookean C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (HEML eq. (26))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -1,5 +1,5 @@
 #pragma once
-/// Conformance harness for materials and element force fields (DESIGN.md principle 7).
+/// Conformance harness for materials and element force fields (docs/design.md, conformance).
 /// Header-only, so that out-of-tree plugins and tests can call it without linking anything but
 /// fascia_core. Every function returns numbers; the caller (a Catch2 test) decides the tolerance.
 ///

@@ -4,6 +4,9 @@
 /// and its component.
 #include "fascia/materials/FastExp.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/materials/Moduli.h"
+
+#include <cmath>
 
 namespace fascia::materials {
 
@@ -70,14 +73,38 @@ struct HolzapfelGasserOgdenLaw {
 /// large fibre strains need a smaller step than the rest estimate.
 class HolzapfelGasserOgden : public Material<HolzapfelGasserOgdenLaw> {
 public:
-    void init() override;
+    static constexpr const char* kName = "HolzapfelGasserOgden";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;k1=3000;k2=4;dispersion=0.1;bulkModulus=20000;direction=1 0.2 0.3;direction2=-0.2 1 0.4";
+    static constexpr const char* kDescription =
+        "Holzapfel-Gasser-Ogden mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2, E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), fibres in tension only (<E> = max(E, 0)), one or two families, kappa = dispersion, K = bulkModulus (Gasser 2006)";
+    void init() override {
+        m_law.mu = m_mu.get();
+        m_law.k1 = m_k1.get();
+        m_law.k2 = m_k2.get();
+        m_law.dispersion = m_dispersion.get();
+        m_law.K = m_bulk.get();
+        m_a0 = unitDirection(*this, m_dir);
+        m_law.twoFamilies = m_dir2.isSet();
+        m_b0 = m_a0;
+        if (m_law.twoFamilies) {
+            m_b0 = unitDirection(*this, m_dir2);
+            if (std::abs(m_a0.dot(m_b0)) > 1.0 - 1e-9)
+                fail(m_dir2, "'direction2' is parallel to 'direction': give two distinct fibre families, or leave "
+                             "'direction2' unset for one family");
+        }
+    }
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.K; }
     /// Upper bound of the dilatational wave speed at rest: sqrt((K + 4/3 mu + n eta)/rho), with
     /// eta = 2 k1 (1 - 3 kappa)^2 the small-strain fibre stiffness (each family's energy is
     /// eta (a0.dev(eps) a0)^2 there, as TransverselyIsotropic's eta/4 (I4bar - 1)^2) and n the number
     /// of families.
-    double waveSpeed(double rho) const override;
+    double waveSpeed(double rho) const override {
+        const double b = 1.0 - 3.0 * m_law.dispersion;
+        const double eta = 2.0 * m_law.k1 * b * b * (m_law.twoFamilies ? 2.0 : 1.0);
+        return std::sqrt((m_law.K + 4.0 / 3.0 * m_law.mu + eta) / rho);
+    }
     const Vec3* fibreDirection(int which) const override {
         return which == 0 ? &m_a0 : which == 1 ? &m_b0 : nullptr;
     }

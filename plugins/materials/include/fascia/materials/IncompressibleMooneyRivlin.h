@@ -8,6 +8,10 @@ namespace fascia::materials {
 /// Shear modulus 2 (C1 + C2); bulk modulus reported as 0.
 class IncompressibleMooneyRivlin : public Material<IncompressibleMooneyRivlinLaw> {
 public:
+    static constexpr const char* kName = "IncompressibleMooneyRivlin";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "C1=400;C2=100";
+    static constexpr const char* kDescription = "HEML's Mooney-Rivlin C1 (I1 - 3) + C2 (I2 - 3), no volumetric term (HEML Table 3)";
     void init() override;
     double shearModulus() const override { return 2.0 * (m_law.C1 + m_law.C2); }
     double bulkModulus() const override { return 0.0; }

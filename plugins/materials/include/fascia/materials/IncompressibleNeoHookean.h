@@ -8,6 +8,10 @@ namespace fascia::materials {
 /// the stress S = 2 C1 I (not stress-free). Shear modulus 2 C1; bulk modulus reported as 0.
 class IncompressibleNeoHookean : public Material<IncompressibleNeoHookeanLaw> {
 public:
+    static constexpr const char* kName = "IncompressibleNeoHookean";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "C1=500";
+    static constexpr const char* kDescription = "HEML's neo-Hookean C1 (I1 - 3), no volumetric term (HEML Table 3)";
     void init() override { m_law.C1 = m_C1.get(); }
     double shearModulus() const override { return 2.0 * m_law.C1; }
     double bulkModulus() const override { return 0.0; }

@@ -15,7 +15,7 @@
 
 namespace fascia::materials {
 
-/// x^(-1/3) for finite x > 0, to a few ulp, without libm or division (PERFORMANCE.md lesson 1):
+/// x^(-1/3) for finite x > 0, to a few ulp, without libm or division (docs/performance.md, lessons: no libm, no division):
 /// an initial guess from the exponent bits (max relative error 3.4 %) refined by four Newton
 /// steps y <- y (4 - x y^3) / 3, whose error squares each step (3.4e-2, 2.3e-3, 1e-5, 2e-10, ~ulp).
 /// Vectorises (the bit guess uses int64 <-> double conversions).

@@ -1,6 +1,6 @@
 #pragma once
 /// Invariant-based hyperelastic laws, shared by HEMLForceField and TLEDForceField
-/// (DESIGN.md principle 3): a law gives W and its derivatives w.r.t. the invariants of
+/// (docs/design.md, the element layer): a law gives W and its derivatives w.r.t. the invariants of
 /// C = F^T F; TLED turns them into S = 2 dW/dC, HEML into dW/dl (squared edge lengths).
 /// A law written once (in this plugin or in a user's plugin) runs in both force fields.
 #include "fascia/base/Component.h"

@@ -8,6 +8,10 @@ namespace fascia::materials {
 /// Moduli: mu and kappa, or youngModulus and poissonRatio. Stress-free at rest.
 class NeoHookean : public Material<NeoHookeanLaw> {
 public:
+    static constexpr const char* kName = "NeoHookean";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;kappa=20000";
+    static constexpr const char* kDescription = "neo-Hookean mu/2 (I1bar - 3) + kappa/2 (J - 1)^2 (TLED eq. (31)-(32), no fibres)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

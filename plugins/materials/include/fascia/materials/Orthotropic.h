@@ -10,6 +10,10 @@ namespace fascia::materials {
 /// orthogonal, warned otherwise). Stress-free at rest.
 class Orthotropic : public Material<OrthotropicLaw> {
 public:
+    static constexpr const char* kName = "Orthotropic";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;kappa=20000;eta=3000;eta2=1500;direction=1 0 0;direction2=0 1 0";
+    static constexpr const char* kDescription = "neo-Hookean plus two fibre families eta/4 (I4bar - 1)^2 + eta2/4 (I6bar - 1)^2";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

@@ -8,6 +8,10 @@ namespace fascia::materials {
 /// strong compression (HEML section 4.2). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
 class StVenantKirchhoff : public Material<StVenantKirchhoffLaw> {
 public:
+    static constexpr const char* kName = "StVenantKirchhoff";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "youngModulus=3000;poissonRatio=0.45";
+    static constexpr const char* kDescription = "Saint Venant-Kirchhoff material, lambda/2 (tr E)^2 + mu tr(E^2) (HEML Table 3)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -10,6 +10,10 @@ namespace fascia::materials {
 /// from a mesh cell array. Stress-free at rest.
 class TransverselyIsotropic : public Material<TransverselyIsotropicLaw> {
 public:
+    static constexpr const char* kName = "TransverselyIsotropic";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "mu=1000;kappa=20000;eta=3000;direction=1 1 0";
+    static constexpr const char* kDescription = "neo-Hookean plus fibres eta/4 (I4bar - 1)^2 (TLED eq. (33) convention)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

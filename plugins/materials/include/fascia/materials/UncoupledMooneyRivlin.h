@@ -3,6 +3,8 @@
 /// and its component.
 #include "fascia/materials/Laws.h"
 
+#include <sstream>
+
 namespace fascia::materials {
 
 /// The uncoupled Mooney-Rivlin material of FEBio (Maas, Ellis, Ateshian & Weiss 2012, J. Biomech.
@@ -41,7 +43,21 @@ struct UncoupledMooneyRivlinLaw {
 /// negative, but c1 + c2 (half the shear modulus) must be positive.
 class UncoupledMooneyRivlin : public Material<UncoupledMooneyRivlinLaw> {
 public:
-    void init() override;
+    static constexpr const char* kName = "UncoupledMooneyRivlin";
+    /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
+    static constexpr const char* kExample = "c1=400;c2=150;k=20000";
+    static constexpr const char* kDescription =
+        "FEBio's uncoupled Mooney-Rivlin c1 (I1bar - 3) + c2 (I2bar - 3) + k/2 (ln J)^2";
+    void init() override {
+        m_law.c1 = m_c1.get();
+        m_law.c2 = m_c2.get();
+        m_law.k = m_k.get();
+        if (!(m_law.c1 + m_law.c2 > 0)) {
+            std::ostringstream os;
+            os << "c1 + c2 = " << m_law.c1 + m_law.c2 << " must be positive (it is half the shear modulus)";
+            fail(m_c1, os.str());
+        }
+    }
     double shearModulus() const override { return 2.0 * (m_law.c1 + m_law.c2); }
     double bulkModulus() const override { return m_law.k; }
 

@@ -1,4 +1,4 @@
-#include "TLEDForceField.h"
+#include "fascia/tled/TLEDForceField.h"
 
 #include "fascia/plugin/Plugin.h"
 

@@ -30,7 +30,7 @@
 /// to its Cartesian nodal forces: the same recurrence, but objective (a rigid rotation of a
 /// stressed body does not relax). The history advances once per step (committed at beginStep).
 ///
-/// Performance (PERFORMANCE.md lessons 1-5): elements as structure of arrays (80 bytes each) in
+/// Performance (docs/performance.md, lessons: no libm, SIMD gather, short passes, block buffers, node order): elements as structure of arrays (80 bytes each) in
 /// blocks of about 1024 (the block count depends on the mesh only, never on the thread count);
 /// nodes renumbered internally by reverse Cuthill-McKee (the state's order is unchanged) and the
 /// elements sorted along it; each block copies its nodes' positions into its own rows (4 doubles,
@@ -39,6 +39,7 @@
 /// threads. No libm call and no pow in the loop (materials::invCbrt, fastLog). Built-in laws run an
 /// inlined, vectorised loop (dispatch once per block on Material<Law>); other materials are
 /// evaluated by one virtual call per 16 elements.
+#include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -87,10 +88,11 @@ public:
     const materials::BaseMaterial* materialOf(size_t element) const;
     /// True when the inlined loop of a built-in law runs (false: batched virtual evaluation).
     bool usesFastPath() const;
+    struct BlockFns;
 
     core::Link<materials::BaseMaterial> m_material{this, core::ParamSpec("material").help(
         "the material (a component of the materials plugin), e.g. \"@liverMat\"; default: the material in the node's context")};
-    core::Param<std::string> m_groupMaterials{this, core::ParamSpec("groupMaterials").help(
+    core::Param<elements::GroupMaterialList> m_groupMaterials{this, core::ParamSpec("groupMaterials").help(
         "per element group materials: pairs of a mesh group (tag number or group name) and a material path, e.g. "
         "\"1 @liverMat 2 @tumourMat\"; groups not listed use 'material' (needs a mesh with groups)")};
     core::Param<double> m_J0{this, core::ParamSpec("J0").min(0, true).max(1, true).help(
@@ -107,14 +109,7 @@ public:
         "name of a mesh cell array with the second fibre direction b0 per tetrahedron (orthotropic materials)")};
 
 private:
-    struct GroupMaterial {
-        int tag;
-        std::string path;
-        materials::BaseMaterial* material;
-    };
-    std::vector<GroupMaterial> parseGroupMaterials() const;
     const MeshData* meshSource() const;
-    materials::BaseMaterial* defaultMaterial() const;
     void precompute(const Positions& rest);
     void checkState(const core::BaseMechanicalState& state) const;
 
@@ -123,7 +118,7 @@ private:
     std::vector<materials::BaseMaterial*> m_elementMaterial;  // input order
     std::vector<Vec3> m_dirA, m_dirB;                          // unit fibre directions per element (empty: unused)
     std::vector<double> m_altitude;                            // shortest rest altitude per element (m)
-    std::vector<int> m_kinds;                                  // law kind per distinct material
+    std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
     std::unique_ptr<HEMLData> m_data;
     bool m_stepOpen = false;

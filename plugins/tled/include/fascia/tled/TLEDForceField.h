@@ -9,7 +9,7 @@
 /// with W from the shared material library (fascia/materials/Laws.h), so every law runs here and
 /// in HEMLForceField unchanged. Without viscosity P is formed directly as
 ///   P = 2 dI1 F + 2 dI2 (I1 F - F C) + 2 dI4 (F a0)(x)a0 + 2 dI6 (F b0)(x)b0 + (dJiso + dJvol) cof F
-/// (F J C^-1 = cof F), which needs no inverse and no division (PERFORMANCE.md lesson 1).
+/// (F J C^-1 = cof F), which needs no inverse and no division (docs/performance.md, lessons: no libm, no division).
 ///
 /// Elements
 /// - 4-node tetrahedra: constant derivatives, V = |det[X1-X0, X2-X0, X3-X0]| / 6 (TLED eq. (3)).
@@ -54,13 +54,14 @@
 /// same step), i.e. once per step for the explicit integrators. potentialEnergy() is the elastic
 /// (instantaneous) energy.
 ///
-/// Parallelism (DESIGN.md principle 5): elements are split into fixed blocks (independent of the thread
+/// Parallelism (docs/design.md, determinism): elements are split into fixed blocks (independent of the thread
 /// count); each block adds into its own node buffer (covering only the node range it touches) and the
 /// buffers are summed per node in block order, so results are bitwise identical for any thread count.
 /// A block's buffer spans the range of node indices its elements use, so the mesh file's numbering
 /// matters: when it makes the buffers more than twice as large as a reverse Cuthill-McKee numbering
 /// of the nodes with the elements sorted by their lowest node (a Gmsh file's order: blocks that span
 /// every node), the force field works in that order internally; the state's order is unchanged.
+#include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -107,7 +108,7 @@ public:
     /// Stable time step (s) of element e alone at density rho, see stableTimeStep(); a linear search.
     double elementTimeStep(size_t e, double rho) const;
     /// Number of fixed blocks the element loop is split into (for tests of determinism).
-    size_t blockCount() const { return m_blocks.size(); }
+    size_t blockCount() const;
     /// Node rows of the blocks' force buffers, all blocks together (for tests of the node ordering).
     size_t bufferRows() const;
 
@@ -121,7 +122,7 @@ public:
     core::Link<materials::BaseMaterial> m_material{this, core::ParamSpec("material").help(
         "material of the elements (with groupMaterials: of the groups it does not list); default, without "
         "groupMaterials: the material in the context")};
-    core::Param<std::string> m_groupMaterials{this, core::ParamSpec("groupMaterials").help(
+    core::Param<elements::GroupMaterialList> m_groupMaterials{this, core::ParamSpec("groupMaterials").help(
         "materials per mesh group: pairs of a group tag or name and a material path, e.g. \"1 @liver 2 @vessel\"")};
     core::Param<std::string> m_fibreArray{this, core::ParamSpec("fibreArray").help(
         "name of a mesh cell array with the fibre direction a0 per element (3 values per cell); "
@@ -142,19 +143,11 @@ public:
     struct Impl;
 
 private:
+    /// Elements, materials, fibres, node order, blocks and packed element data (TLEDElements.cpp).
+    void precompute(const MeshData* mesh, const Positions& X);
     Tetrahedra m_tets;
     Hexahedra m_hexes;
     std::unique_ptr<Impl> m_impl;
-    struct Block {
-        int kind = 0;      ///< 0 tetrahedra, 1 hexahedra
-        int group = 0;     ///< index into Impl::groups
-        size_t begin = 0, end = 0;  ///< internal element range of its kind
-        int nodeLo = 0, nodeHi = -1;  ///< internal node range its elements touch
-        size_t bufOffset = 0;         ///< offset of its node buffer in Impl::buf (doubles, 4 per internal node)
-        size_t batchBase = 0;         ///< index of its first element batch among all blocks (viscous states)
-    };
-    std::vector<Block> m_blocks;
-    friend struct Impl;
 };
 
 } // namespace fascia::tled

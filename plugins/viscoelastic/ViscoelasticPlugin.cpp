@@ -1,4 +1,4 @@
-#include "ViscoelasticProny.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include "fascia/plugin/Plugin.h"
 

@@ -1,0 +1,402 @@
+#pragma once
+/// Internal to TLEDForceField: the element loop of one block (TLED eq. (1)-(3), (10), (24), (30)),
+/// a short driver over inline stages that each run one vectorised pass over a batch of kBatch
+/// elements (docs/performance.md, lessons: short passes over batches):
+///   gather u -> gradient and invariants (F, C, I1, I2, J, I4, I6; hexahedra: hourglass modes)
+///   -> the law (W and dW/dI for the whole batch) -> stress (P directly; or S, relaxed by the
+///   Prony series, then P = F S) -> energy -> nodal forces f_a = -V P dN_a/dX -> scatter.
+/// The per-element formulas are the element layer's (fascia/elements/Tensor3.h, BatchView.h).
+#include "TLEDData.h"
+
+#include "fascia/elements/BatchView.h"
+#include "fascia/materials/Material.h"
+
+#include <algorithm>
+#include <type_traits>
+
+namespace fascia::tled::kernel {
+
+using namespace elements;
+using materials::BaseMaterial;
+using Impl = TLEDForceField::Impl;
+
+/// Per-batch scratch of the element loop, as structure of arrays (index k = element in the batch).
+template <int NN>
+struct Batch {
+    NodalBatch<NN, kBatch> u;              ///< nodal displacements x - X
+    MatBatch<kBatch> F;                    ///< deformation gradient
+    alignas(64) double I1[kBatch], I2[kBatch], J[kBatch], I4[kBatch], I6[kBatch];
+    ResponseBatch<kBatch> r;               ///< the law's response
+    MatBatch<kBatch> P;                    ///< first Piola-Kirchhoff stress
+    SymBatch<kBatch> Siso, Svol, S;        ///< viscous path: S and its parts
+    alignas(64) double Ytmp[kBatch];       ///< viscous path: a state row on its way to a streaming store
+    alignas(64) double Y6[6][kBatch];      ///< the same for the six rows of a one-term series
+    NodalBatch<NN, kBatch> f;              ///< element nodal forces
+    alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
+};
+
+/// Fibre directions of a batch: rows a0 x y z, b0 x y z (per element, or the group's copied across).
+struct Fibres {
+    NodeRows<kBatch> rows;
+    FASCIA_INLINE Vec33<double> a(int k) const { return rows.vec(0, k); }
+    FASCIA_INLINE Vec33<double> b(int k) const { return rows.vec(1, k); }
+};
+
+/// Gathers u of the batch's nodes (precomputed per node, padded to 4; forming F from displacements
+/// keeps it accurate).
+template <int NN>
+FASCIA_INLINE void gather(const ElementSet<NN>& es, size_t e0, int n, const double* __restrict u4, Batch<NN>& s) {
+    int kq = 0;
+    for (; kq + 4 <= n; kq += 4) {
+        const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
+        for (int a = 0; a < NN; ++a) simd::gather4(u4, nd + a, NN, &s.u.v[a][0][kq], &s.u.v[a][1][kq], &s.u.v[a][2][kq]);
+    }
+    for (int k = kq; k < n; ++k) {
+        const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
+        for (int a = 0; a < NN; ++a) {
+            const double* up = u4 + 4 * static_cast<size_t>(nd[a]);
+            s.u.v[a][0][k] = up[0];
+            s.u.v[a][1][k] = up[1];
+            s.u.v[a][2][k] = up[2];
+        }
+    }
+}
+
+/// Hourglass control of a hexahedron (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with
+/// gamma_qa = h_qa - c_q . dN_a/dX, c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q;
+/// energy K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are sums and
+/// differences of node pairs. Component j, g = row j of F - I.
+FASCIA_INLINE void hourglassModes(Batch<8>& s, const NodeRows<kBatch>& c, int k, int j, double g0, double g1, double g2) {
+    const auto& u = s.u.v;
+    const double d01 = u[0][j][k] - u[1][j][k], d23 = u[2][j][k] - u[3][j][k], d45 = u[4][j][k] - u[5][j][k],
+                 d67 = u[6][j][k] - u[7][j][k];
+    const double a01 = u[0][j][k] + u[1][j][k], a23 = u[2][j][k] + u[3][j][k], a45 = u[4][j][k] + u[5][j][k],
+                 a67 = u[6][j][k] + u[7][j][k];
+    const double X = d01 + d23, Y = d45 + d67;
+    s.Kh[j][k] = (X + Y) - (g0 * c.at(0, 0, k) + g1 * c.at(0, 1, k) + g2 * c.at(0, 2, k));                // ( 1,-1, 1,-1, 1,-1, 1,-1)
+    s.Kh[3 + j][k] = (a01 - a23) + (a67 - a45) - (g0 * c.at(1, 0, k) + g1 * c.at(1, 1, k) + g2 * c.at(1, 2, k));  // ( 1, 1,-1,-1,-1,-1, 1, 1)
+    s.Kh[6 + j][k] = (d01 - d23) + (d67 - d45) - (g0 * c.at(2, 0, k) + g1 * c.at(2, 1, k) + g2 * c.at(2, 2, k));  // ( 1,-1,-1, 1,-1, 1, 1,-1)
+    s.Kh[9 + j][k] = (Y - X) - (g0 * c.at(3, 0, k) + g1 * c.at(3, 1, k) + g2 * c.at(3, 2, k));            // (-1, 1,-1, 1, 1,-1, 1,-1)
+}
+
+/// F = I + sum_a u_a (x) dN_a/dX and the invariants of C = F^T F the law uses (U: BaseMaterial::Uses).
+template <int NN, unsigned U>
+FASCIA_INLINE void gradientAndInvariants(Batch<NN>& s, int n, const double* __restrict G, const Fibres& fib) {
+    const NodeRows<kBatch> dN{G};
+#pragma omp simd
+    for (int k = 0; k < n; ++k) {
+        Mat33<double> F;
+        if constexpr (NN == 4) F = deformationGradientTet(s.u, dN, k);
+        else F = deformationGradient(s.u, dN, k);
+        s.F.set(k, F);
+        if constexpr (NN == 8) {
+            // computed here, where u and F are at hand (a pass of its own reloaded them)
+            const NodeRows<kBatch> c{G + ElementSet<NN>::kHgRow * kBatch};
+            hourglassModes(s, c, k, 0, F.xx - 1, F.xy, F.xz);
+            hourglassModes(s, c, k, 1, F.yx, F.yy - 1, F.yz);
+            hourglassModes(s, c, k, 2, F.zx, F.zy, F.zz - 1);
+        }
+        const Invariants3<double> in = invariants<(U & BaseMaterial::UsesI2) != 0>(F);
+        s.I1[k] = in.I1;
+        s.J[k] = in.J;
+        s.I2[k] = in.I2;
+        double I4 = 1, I6 = 1;
+        if constexpr ((U & BaseMaterial::UsesI4) != 0) I4 = fibreInvariant(F, fib.a(k));
+        if constexpr ((U & BaseMaterial::UsesI6) != 0) I6 = fibreInvariant(F, fib.b(k));
+        s.I4[k] = I4;
+        s.I6[k] = I6;
+    }
+}
+
+/// Without viscosity: P from the law's response directly (Tensor3.h firstPiola).
+template <int NN, unsigned U>
+FASCIA_INLINE void elasticStress(Batch<NN>& s, int n, const Fibres& fib) {
+    constexpr bool i2 = (U & BaseMaterial::UsesI2) != 0, i4 = (U & BaseMaterial::UsesI4) != 0, i6 = (U & BaseMaterial::UsesI6) != 0;
+#pragma omp simd
+    for (int k = 0; k < n; ++k)
+        s.P.set(k, firstPiola<i2, i4, i6>(s.F.get(k), s.I1[k], s.r.coefficients(k), fib.a(k), fib.b(k)));
+}
+
+/// S of TLED eq. (10) in its isochoric and volumetric parts (Tensor3.h secondPiola).
+template <unsigned U, int NN>
+FASCIA_INLINE void splitStress(const Batch<NN>& s, int k, const Fibres& fib, Sym33<double>& Si, Sym33<double>& Sv) {
+    constexpr bool i2 = (U & BaseMaterial::UsesI2) != 0, i4 = (U & BaseMaterial::UsesI4) != 0, i6 = (U & BaseMaterial::UsesI6) != 0;
+    secondPiola<i2, i4, i6>(s.F.get(k), s.I1[k], s.J[k], s.r.coefficients(k), fib.a(k), fib.b(k), Si, Sv);
+}
+
+/// One series of one term (the TLED paper's models): S, Y = A Phi + B Y^(n-1), S - Y and P = F S in
+/// one pass (TLED eq. (24), (30)).
+template <int NN, unsigned U>
+FASCIA_INLINE void viscousStressOneTerm(Batch<NN>& s, int n, const Fibres& fib, const ViscoSet& vs, const double* __restrict Yh,
+                                        double* __restrict Yn) {
+    const double A1 = vs.A[0], B1 = vs.B[0];
+    const double wIso = vs.iso ? 1.0 : 0.0, wVol = vs.vol ? 1.0 : 0.0;  // (weights 0 or 1: no branch in the loop)
+#pragma omp simd
+    for (int k = 0; k < n; ++k) {
+        Sym33<double> Si, Sv;
+        splitStress<U>(s, k, fib, Si, Sv);
+        const auto relax = [&](double a, double b, int i) {
+            const double Y = A1 * (wIso * a + wVol * b) + B1 * Yh[i * kBatch + k];
+            Yn[i * kBatch + k] = Y;
+            return (a + b) - Y;
+        };
+        const Sym33<double> T{relax(Si.xx, Sv.xx, 0), relax(Si.yy, Sv.yy, 1), relax(Si.zz, Sv.zz, 2),
+                              relax(Si.xy, Sv.xy, 3), relax(Si.yz, Sv.yz, 4), relax(Si.xz, Sv.xz, 5)};
+        s.P.set(k, firstPiolaOf(s.F.get(k), T));
+    }
+}
+
+/// Any number of series and terms: S and its parts, then one short loop per series, term and
+/// component: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1) (TLED eq. (24), (30)), then P = F S.
+template <int NN, unsigned U>
+FASCIA_INLINE void viscousStress(Batch<NN>& s, int n, const Fibres& fib, const Impl& im, const KernelIO& io, size_t batch) {
+#pragma omp simd
+    for (int k = 0; k < n; ++k) {
+        Sym33<double> Si, Sv;
+        splitStress<U>(s, k, fib, Si, Sv);
+        s.Siso.set(k, Si);
+        s.Svol.set(k, Sv);
+        s.S.set(k, Si + Sv);
+    }
+    for (size_t v = 0; v < im.visco.size(); ++v) {
+        const ViscoSet& vs = im.visco[v];
+        // (no coefficients yet, i.e. no time step: no relaxation)
+        const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+        const size_t slot = batch * static_cast<size_t>(vs.terms) * 6 * kBatch;
+        // large states: Y goes to a scratch row, then to memory with streaming stores
+        const bool stream = io.streamY && n == kBatch;
+        for (int t = 0; t < terms; ++t) {
+            const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+            for (int i = 0; i < 6; ++i) {
+                const size_t row = slot + (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
+                const double* __restrict Yh = io.Yhist[v] + row;
+                double* __restrict Yn = stream ? s.Ytmp : io.Ynew[v] + row;
+                const double* __restrict Ri = s.Siso.s[i];
+                const double* __restrict Rv = s.Svol.s[i];
+                double* __restrict Si = s.S.s[i];
+                if (vs.iso && vs.vol) {
+#pragma omp simd
+                    for (int k = 0; k < n; ++k) {
+                        const double Y = A * (Ri[k] + Rv[k]) + Bc * Yh[k];
+                        Si[k] -= Y;
+                        Yn[k] = Y;
+                    }
+                } else {
+                    const double* __restrict R = vs.iso ? Ri : Rv;  // one part only
+#pragma omp simd
+                    for (int k = 0; k < n; ++k) {
+                        const double Y = A * R[k] + Bc * Yh[k];
+                        Si[k] -= Y;
+                        Yn[k] = Y;
+                    }
+                }
+                if (stream) simd::streamCopy(io.Ynew[v] + row, s.Ytmp, kBatch);
+            }
+        }
+    }
+#pragma omp simd
+    for (int k = 0; k < n; ++k) s.P.set(k, firstPiolaOf(s.F.get(k), s.S.get(k)));
+}
+
+/// Stress output (S and F per cell, scalar): S with the viscous history read but not advanced
+/// unless io.Ynew is given, then P = F S.
+template <int NN, unsigned U>
+FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Impl& im, const ElementSet<NN>& es,
+                                const KernelIO& io, size_t e0, size_t batch, size_t cellOff) {
+    for (int k = 0; k < n; ++k) {
+        Sym33<double> Si, Sv;
+        splitStress<U>(s, k, fib, Si, Sv);
+        double S[6] = {Si.xx + Sv.xx, Si.yy + Sv.yy, Si.zz + Sv.zz, Si.xy + Sv.xy, Si.yz + Sv.yz, Si.xz + Sv.xz};
+        const double siso[6] = {Si.xx, Si.yy, Si.zz, Si.xy, Si.yz, Si.xz}, svol[6] = {Sv.xx, Sv.yy, Sv.zz, Sv.xy, Sv.yz, Sv.xz};
+        for (size_t v = 0; v < im.visco.size(); ++v) {
+            const ViscoSet& vs = im.visco[v];
+            double R[6];
+            for (int i = 0; i < 6; ++i) R[i] = (vs.iso ? siso[i] : 0.0) + (vs.vol ? svol[i] : 0.0);
+            const size_t at = batch * static_cast<size_t>(vs.terms) * 6 * kBatch + static_cast<size_t>(k);
+            const double* Yh = io.Yhist[v] + at;  // term t, component i at (6 t + i) kBatch
+            double* Yn = io.Ynew[v] ? io.Ynew[v] + at : nullptr;
+            const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+            for (int t = 0; t < terms; ++t) {
+                const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+                for (int i = 0; i < 6; ++i) {
+                    const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
+                    const double Y = A * R[i] + Bc * Yh[row];
+                    S[i] -= Y;
+                    if (Yn) Yn[row] = Y;
+                }
+            }
+        }
+        const Mat33<double> F = s.F.get(k);
+        s.P.set(k, firstPiolaOf(F, Sym33<double>{S[0], S[1], S[2], S[3], S[4], S[5]}));
+        const size_t cell = cellOff + static_cast<size_t>(es.orig[e0 + static_cast<size_t>(k)]);
+        if (io.S)
+            for (int i = 0; i < 6; ++i) io.S[6 * cell + static_cast<size_t>(i)] = S[i];
+        if (io.F)
+            for (int i = 0; i < 9; ++i) io.F[9 * cell + static_cast<size_t>(i)] = s.F.m[i][k];
+    }
+}
+
+/// energy += the elastic energy of the batch, hourglass energy K/2 sum_q |h_q|^2 included (element
+/// by element into the block's running sum).
+template <int NN>
+FASCIA_INLINE void addEnergy(const Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, double& energy) {
+    for (int k = 0; k < n; ++k) energy += es.vol[e0 + static_cast<size_t>(k)] * s.r.W[k];
+    if constexpr (NN == 8) {
+        const double* __restrict K = es.hgK.data() + e0;
+        for (int k = 0; k < n; ++k) {
+            double w = 0;
+            for (int r = 0; r < 12; ++r) w += s.Kh[r][k] * s.Kh[r][k];
+            energy += 0.5 * K[k] * w;
+        }
+    }
+}
+
+/// f_a = -V P dN_a/dX (TLED eq. (1)-(3)); hexahedra with hourglass control:
+/// -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q, so
+/// f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q.
+template <int NN>
+FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, const double* __restrict G) {
+    const NodeRows<kBatch> dN{G};
+#pragma omp simd
+    for (int k = 0; k < n; ++k) {
+        const size_t e = e0 + static_cast<size_t>(k);
+        const double V = es.vol[e];
+        double P0 = V * s.P.m[0][k], P1 = V * s.P.m[1][k], P2 = V * s.P.m[2][k], P3 = V * s.P.m[3][k], P4 = V * s.P.m[4][k],
+               P5 = V * s.P.m[5][k], P6 = V * s.P.m[6][k], P7 = V * s.P.m[7][k], P8 = V * s.P.m[8][k];
+        Mat33<double> P{P0, P1, P2, P3, P4, P5, P6, P7, P8};
+        if constexpr (NN == 4) {
+            double s0 = 0, s1 = 0, s2 = 0;
+            for (int a = 1; a < 4; ++a) {
+                const Vec33<double> f = nodalForce(P, dN.at(a - 1, 0, k), dN.at(a - 1, 1, k), dN.at(a - 1, 2, k));
+                s.f.set(a, k, f);
+                s0 += f.x;
+                s1 += f.y;
+                s2 += f.z;
+            }
+            s.f.set(0, k, {-s0, -s1, -s2});
+        } else {
+            const NodeRows<kBatch> hgC{G + ElementSet<NN>::kHgRow * kBatch};
+            const double K = es.hgK[e];
+            double r[3][8];  // K sum_q h_qa h_q per component, the pair sums of hourglassModes reversed
+#pragma GCC unroll 3
+            for (int j = 0; j < 3; ++j) {
+                const double g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
+                const double p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
+                r[j][0] = p + sm;
+                r[j][1] = sp - p;
+                r[j][2] = m - sp;
+                r[j][3] = -m - sm;
+                r[j][4] = m - sm;
+                r[j][5] = -m - sp;
+                r[j][6] = p + sp;
+                r[j][7] = sm - p;
+            }
+#pragma GCC unroll 4
+            for (int q = 0; q < 4; ++q) {
+                const double c0 = hgC.at(q, 0, k), c1 = hgC.at(q, 1, k), c2 = hgC.at(q, 2, k);
+                const double k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
+                P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
+                P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
+                P6 -= k2 * c0; P7 -= k2 * c1; P8 -= k2 * c2;
+            }
+            // (fully unrolled: a loop left over the nodes turns the dN loads into emulated gathers)
+#pragma GCC unroll 8
+            for (int a = 0; a < NN; ++a) {
+                const double g0 = dN.at(a, 0, k), g1 = dN.at(a, 1, k), g2 = dN.at(a, 2, k);
+                s.f.v[a][0][k] = -(P0 * g0 + P1 * g1 + P2 * g2) - r[0][a];
+                s.f.v[a][1][k] = -(P3 * g0 + P4 * g1 + P5 * g2) - r[1][a];
+                s.f.v[a][2][k] = -(P6 * g0 + P7 * g1 + P8 * g2) - r[2][a];
+            }
+        }
+    }
+}
+
+/// Adds the batch's nodal forces into the block's node buffer (a fixed order: batch quads, then
+/// nodes, then elements).
+template <int NN>
+FASCIA_INLINE void scatter(const Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, double* __restrict buf, int lo) {
+    int kq = 0;
+    for (; kq + 4 <= n; kq += 4) {
+        const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
+        for (int a = 0; a < NN; ++a) simd::scatterAdd4(buf, nd + a, NN, &s.f.v[a][0][kq], &s.f.v[a][1][kq], &s.f.v[a][2][kq], lo);
+    }
+    for (int k = kq; k < n; ++k) {
+        const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
+        for (int a = 0; a < NN; ++a) {
+            double* fa = buf + 4 * static_cast<size_t>(nd[a] - lo);
+            fa[0] += s.f.v[a][0][k];
+            fa[1] += s.f.v[a][1][k];
+            fa[2] += s.f.v[a][2][k];
+        }
+    }
+}
+
+/// Prefetches the element data two batches ahead (at the block's start, the next one too): a batch
+/// reads its data as short streams that the hardware prefetchers pick up late; and, with viscosity,
+/// the next batch's states (docs/performance.md, lessons: software prefetch).
+template <int NN>
+FASCIA_INLINE void prefetchAhead(const Impl& im, const ElementSet<NN>& es, const Block& b, size_t e0, const double* G,
+                                 bool visco, const KernelIO& io, size_t batch) {
+    const size_t len = static_cast<size_t>(es.rows) * kBatch;
+    for (size_t ahead = e0 == b.begin ? 1 : 2; ahead <= 2; ++ahead)
+        if (e0 + ahead * kBatch < b.end) simd::prefetch(G + ahead * len, len * sizeof(double));
+    if (visco && e0 + kBatch < b.end)
+        for (size_t v = 0; v < im.visco.size(); ++v) {
+            const size_t l = static_cast<size_t>(im.visco[v].terms) * 6 * kBatch;
+            simd::prefetch(io.Yhist[v] + (batch + 1) * l, l * sizeof(double));
+        }
+}
+
+/// The element loop of one block. U: the invariants the law uses (BaseMaterial::Uses bits), a
+/// compile-time constant so that the vector loops carry no dead branches.
+template <int NN, unsigned U, class Eval>
+void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO& io) {
+    const ElementSet<NN>& es = im.template set<NN>();
+    // stress output: the scalar path; forces with viscosity: the viscous path; otherwise (and for
+    // the energy alone, which is the elastic one) P directly
+    const bool needS = io.S || io.F;
+    const bool viscoP = !needS && io.buf && !im.visco.empty();
+    const ViscoSet* one = viscoP && im.visco.size() == 1 && im.visco[0].terms == 1 && im.visco[0].A.size() == 1 ? &im.visco[0] : nullptr;
+    // fibre directions: per element, or the group's copied across a batch-wide row (same loops)
+    const Impl::Group& grp = im.groups[static_cast<size_t>(b.group)];
+    alignas(64) double uniformFibre[6][kBatch];
+    if (!im.fibresPerElement && (U & (BaseMaterial::UsesI4 | BaseMaterial::UsesI6)))
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < kBatch; ++k) {
+                uniformFibre[c][k] = grp.a0[c];
+                uniformFibre[3 + c][k] = grp.b0[c];
+            }
+    const bool packFibres = im.fibresPerElement && es.rows > ElementSet<NN>::kFibreRow;
+    Batch<NN> s;
+    double energy = 0;
+    for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
+        const int n = static_cast<int>(std::min<size_t>(kBatch, b.end - e0));
+        const size_t batch = b.batchBase + (e0 - b.begin) / kBatch;  // slot of the viscous states
+        const double* __restrict G = es.batchData(b, e0);           // row r at G + r kBatch
+        prefetchAhead(im, es, b, e0, G, viscoP, io, batch);
+        const Fibres fib{{packFibres ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0]}};
+        gather(es, e0, n, io.u, s);
+        gradientAndInvariants<NN, U>(s, n, G, fib);
+        eval(s, n);
+        if (one) {
+            const bool stream = io.streamY && n == kBatch;
+            double* Yn = stream ? s.Y6[0] : io.Ynew[0] + batch * 6 * kBatch;
+            viscousStressOneTerm<NN, U>(s, n, fib, *one, io.Yhist[0] + batch * 6 * kBatch, Yn);
+            if (stream) simd::streamCopy(io.Ynew[0] + batch * 6 * kBatch, s.Y6[0], 6 * kBatch);
+        } else if (viscoP) {
+            viscousStress<NN, U>(s, n, fib, im, io, batch);
+        } else if (!needS) {
+            elasticStress<NN, U>(s, n, fib);
+        } else {
+            stressOutput<NN, U>(s, n, fib, im, es, io, e0, batch, NN == 4 ? 0 : im.nTetCells);
+        }
+        if (io.energy) addEnergy(s, n, es, e0, energy);
+        if (io.buf) {
+            nodalForces(s, n, es, e0, G);
+            scatter(s, n, es, e0, io.buf, io.bufLo);
+        }
+    }
+    if (io.energy) *io.energy += energy;
+}
+
+} // namespace fascia::tled::kernel
