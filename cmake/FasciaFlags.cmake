@@ -4,7 +4,7 @@ if(NOT TARGET fascia_flags)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(fascia_flags INTERFACE
       $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wno-unused-parameter>
-      # GCC with -std=c++17 disables contraction; FMA is 5-12 % on the element loops (PERFORMANCE.md)
+      # GCC with -std=c++17 disables contraction; contraction (FMA) matters in the element loops: docs/performance.md, lesson 8
       $<$<COMPILE_LANGUAGE:CXX>:-ffp-contract=fast>)
     if(FASCIA_NATIVE)
       target_compile_options(fascia_flags INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-march=native>)

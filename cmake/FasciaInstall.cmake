@@ -9,7 +9,11 @@ install(TARGETS fascia_core fascia_flags EXPORT FasciaTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Headers only, from the declared public include folders: a folder that still holds sources gives
+# no .cpp, CMakeLists.txt or tests/ to <prefix>/include (tests/install/CheckInstallTree.cmake checks).
+set(_fascia_header_filter FILES_MATCHING PATTERN "*.h" PATTERN "tests" EXCLUDE)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        ${_fascia_header_filter})
 
 # plugins: all into the plugin folder; those with public headers (materials ...) are exported too
 get_property(_fascia_plugins GLOBAL PROPERTY FASCIA_INTREE_PLUGINS)
@@ -23,7 +27,7 @@ foreach(p ${_fascia_plugins})
 endforeach()
 get_property(_fascia_public_includes GLOBAL PROPERTY FASCIA_PUBLIC_INCLUDE_DIRS)
 foreach(d ${_fascia_public_includes})
-  install(DIRECTORY ${d}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${d}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} ${_fascia_header_filter})
 endforeach()
 
 install(EXPORT FasciaTargets NAMESPACE Fascia:: DESTINATION ${FASCIA_CMAKE_DIR})

@@ -202,6 +202,7 @@ int main(int argc, char** argv) {
                                                                      std::to_string(sim->dt()) + " s is more than 1e12 steps");
             steps = long(n);
         }
+        sim->start();  // the scene is valid: only now do the observers write the initial state
         std::signal(SIGINT, onSignal);
         std::signal(SIGTERM, onSignal);
         const bool bar = !quiet && isatty(STDERR_FILENO);

@@ -26,6 +26,10 @@ void throwInputError(const SourceLoc& loc, const std::string& message, std::vect
     throw Error(ErrorKind::Input, loc, message, std::move(notes));
 }
 
+void throwOutputError(const SourceLoc& loc, const std::string& message, std::vector<std::string> notes) {
+    throw Error(ErrorKind::Output, loc, message, std::move(notes));
+}
+
 void throwSimulationError(const std::string& message) {
     throw Error(ErrorKind::Simulation, {}, message);
 }

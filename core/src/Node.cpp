@@ -1,5 +1,7 @@
 #include "fascia/scene/Node.h"
 
+#include <filesystem>
+
 namespace fascia::core {
 
 Node::Node() { setClassName("Node"); }
@@ -102,6 +104,19 @@ Component* Node::resolveComponent(const std::string& path) const {
 }
 
 void SceneContext::claimOutput(const std::string& path, const Base& who) {
+    // every output stays inside the output folder: "../x" or an absolute path would write where
+    // the user did not ask (compared lexically, on absolute normalised paths)
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path dir = fs::absolute(outputDir.empty() ? "." : outputDir, ec).lexically_normal();
+    const fs::path rel = fs::absolute(path, ec).lexically_normal().lexically_relative(dir);
+    if (rel.empty() || *rel.begin() == ".." || *rel.begin() == ".") {
+        const std::string msg = "writes '" + path + "', which is outside the output folder '" + outputDir + "'";
+        const std::vector<std::string> notes{"output file names are relative to the output folder (fascia-run --output) "
+                                             "and stay inside it: no absolute path, no '..'"};
+        if (const BaseParam* p = who.findParam("filename"); p && p->isSet()) who.fail(*p, msg, notes);
+        who.fail(msg, notes);
+    }
     const std::string me = who.path() + (who.loc().empty() ? "" : " (" + who.loc().str() + ")");
     auto [it, fresh] = outputs.emplace(path, me);
     if (!fresh && it->second != me)

@@ -1,13 +1,13 @@
 #include "fascia/scene/SceneLoader.h"
+#include "fascia/base/InputFile.h"
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
 
 #include <tinyxml2.h>
 
 #include <filesystem>
-#include <fstream>
+#include <map>
 #include <set>
-#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -29,33 +29,43 @@ std::string xmlProblem(const tinyxml2::XMLDocument& doc) {
     }
 }
 
-void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec& out,
-             std::vector<std::string>& includeStack);
+/// What a scene may hold in all, includes expanded: an include tree that fans out (each file
+/// including the next twice) grows as 2^depth, so the count of includes and the bytes read are bounded.
+constexpr int kMaxIncludes = 1000;
+constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t(256) << 20;
 
-ElementSpec parseDocument(const std::string& text, const std::string& file, std::vector<std::string>& includeStack) {
+/// The state of one parse: the chain of files being included (for cycles) and what was read so far.
+struct ParseState {
+    std::vector<std::string> stack;
+    int includes = 0;
+    std::uintmax_t bytes = 0;
+};
+
+void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec& out, ParseState& state);
+
+ElementSpec parseDocument(const std::string& text, const std::string& file, ParseState& state) {
     tinyxml2::XMLDocument doc;
     doc.Parse(text.c_str(), text.size());
-    if (doc.Error()) throwInputError({file, doc.ErrorLineNum()}, xmlProblem(doc));
+    if (doc.Error()) throwInputError({file, std::max(1, doc.ErrorLineNum())}, xmlProblem(doc));
     const tinyxml2::XMLElement* root = doc.RootElement();
     if (!root) throwInputError({file, 1}, "the scene has no root element", {"a scene starts with <Node name=\"root\">"});
+    if (const tinyxml2::XMLElement* second = root->NextSiblingElement())
+        throwInputError({file, second->GetLineNum()},
+                        std::string("a second root element <") + second->Name() + "> after <" + root->Name() + "> (line " +
+                            std::to_string(root->GetLineNum()) + "): a scene file has one root element",
+                        {"put it inside the root <Node>"});
     ElementSpec spec;
-    convert(root, file, spec, includeStack);
+    convert(root, file, spec, state);
     return spec;
 }
 
-std::string readFile(const std::string& path, const SourceLoc& from) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throwInputError(from.empty() ? SourceLoc{path, 0} : from, "cannot open '" + path + "': no such file");
-    if (fs::is_directory(path, ec)) throwInputError(from.empty() ? SourceLoc{path, 0} : from, "'" + path + "' is a folder, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throwInputError(from.empty() ? SourceLoc{path, 0} : from, "cannot read '" + path + "' (permission?)");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+/// A scene or include file: a regular file of at most kMaxSceneFileBytes. The top file's errors are
+/// located at its line 1, an include's at its <include> line.
+std::string readSceneFile(const std::string& path, const SourceLoc& from) {
+    return readRegularFile(path, "scene file", kMaxSceneFileBytes, from.empty() ? SourceLoc{path, 1} : from);
 }
 
-void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec& out,
-             std::vector<std::string>& includeStack) {
+void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec& out, ParseState& state) {
     out.tag = e->Name();
     out.loc = {file, e->GetLineNum()};
     for (auto* a = e->FirstAttribute(); a; a = a->Next()) out.attributes.emplace_back(a->Name(), a->Value());
@@ -69,17 +79,25 @@ void convert(const tinyxml2::XMLElement* e, const std::string& file, ElementSpec
                     throwInputError(here, std::string("unknown attribute '") + a->Name() + "' of <include>",
                                     {"<include> takes only href"});
             const std::string target = resolveScenePath(href, here);
-            if (std::find(includeStack.begin(), includeStack.end(), target) != includeStack.end())
+            if (std::find(state.stack.begin(), state.stack.end(), target) != state.stack.end())
                 throwInputError(here, "'" + target + "' includes itself (include cycle)");
-            if (includeStack.size() > 32) throwInputError(here, "includes nested more than 32 deep");
-            includeStack.push_back(target);
-            ElementSpec inc = parseDocument(readFile(target, here), target, includeStack);
-            includeStack.pop_back();
+            if (state.stack.size() > 32) throwInputError(here, "includes nested more than 32 deep");
+            if (++state.includes > kMaxIncludes)
+                throwInputError(here, "more than " + std::to_string(kMaxIncludes) + " includes in the scene",
+                                {"does a file include another many times (each copy is read again)?"});
+            const std::string text = readSceneFile(target, here);
+            state.bytes += text.size();
+            if (state.bytes > kMaxSceneBytes)
+                throwInputError(here, "the scene, includes expanded, is more than " + std::to_string(kMaxSceneBytes) +
+                                          " bytes", {"does a file include another many times (each copy is read again)?"});
+            state.stack.push_back(target);
+            ElementSpec inc = parseDocument(text, target, state);
+            state.stack.pop_back();
             out.children.push_back(std::move(inc));
             continue;
         }
         out.children.emplace_back();
-        convert(c, file, out.children.back(), includeStack);
+        convert(c, file, out.children.back(), state);
     }
 }
 
@@ -176,10 +194,14 @@ void buildChildren(Node& node, const ElementSpec& spec) {
     for (auto& c : node.components())
         if (!c->name().empty() && !used.insert(c->name()).second)
             throwInputError(c->loc(), "two components of node '" + node.name() + "' are named '" + c->name() + "'");
+    // the first free of Class, Class2, Class3, ...; names are only ever added, so the search for the
+    // next one of a class resumes where the last one stopped (linear in the count, not quadratic)
+    std::map<std::string, int> nextIndex;
     for (auto& c : node.components())
         if (c->name().empty()) {
-            std::string n = c->className();
-            for (int i = 2; used.count(n); ++i) n = c->className() + std::to_string(i);
+            int& i = nextIndex.emplace(c->className(), 1).first->second;
+            std::string n = i == 1 ? c->className() : c->className() + std::to_string(i);
+            while (used.count(n)) n = c->className() + std::to_string(++i);
             used.insert(n);
             c->setName(n);
         }
@@ -256,15 +278,20 @@ void checkRequired(Node& root) {
 } // namespace
 
 ElementSpec parseSceneFile(const std::string& path) {
-    std::vector<std::string> stack{path};
-    return parseDocument(readFile(path, {}), path, stack);
+    ParseState state;
+    state.stack.push_back(path);
+    const std::string text = readSceneFile(path, {});
+    state.bytes = text.size();
+    return parseDocument(text, path, state);
 }
 
 ElementSpec parseSceneString(const std::string& xml, const std::string& virtualName, const std::string& baseDir) {
     std::string name = virtualName;
     if (baseDir != "." && !baseDir.empty()) name = (fs::path(baseDir) / name).string();
-    std::vector<std::string> stack{name};
-    return parseDocument(xml, name, stack);
+    ParseState state;
+    state.stack.push_back(name);
+    state.bytes = xml.size();
+    return parseDocument(xml, name, state);
 }
 
 std::unique_ptr<Node> buildScene(const ElementSpec& root) {

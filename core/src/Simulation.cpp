@@ -1,11 +1,16 @@
 #include "fascia/sim/Simulation.h"
 #include "fascia/scene/SceneLoader.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <sstream>
 
 namespace fascia::core {
 
@@ -54,6 +59,26 @@ void collect(Node& n, std::vector<Component*>& out) {
     for (auto& ch : n.children()) collect(*ch, out);
 }
 
+std::string shortNumber(double v) {
+    std::ostringstream os;
+    os.precision(6);
+    os << v;
+    return os.str();
+}
+
+/// A node has one integrator: its states find the first, so a second one would never be called.
+void checkOneIntegratorPerNode(const Node& root) {
+    root.visit([](const Node& n) {
+        const auto integrators = n.findAllLocal<BaseIntegrator>();
+        if (integrators.size() < 2) return;
+        const BaseIntegrator* first = integrators[0];
+        integrators[1]->fail("a second integrator in node '" + n.name() + "', which has " + first->className() + " '" +
+                                 first->name() + "'" + (first->loc().empty() ? "" : " (" + first->loc().str() + ")") +
+                                 ": only the first would be called",
+                             {"keep one integrator per node; a state in a child node may have its own"});
+    });
+}
+
 struct InitOrder {
     std::set<Component*> done, active;
     void run(Component* c) {
@@ -80,6 +105,7 @@ void Simulation::init() {
     if (m_initialised) return;
     m_all.clear();
     collect(*m_root, m_all);
+    checkOneIntegratorPerNode(*m_root);
     InitOrder order;
     for (Component* c : m_all) order.run(c);
 
@@ -143,9 +169,15 @@ void Simulation::init() {
     if (m_dtOverride > 0) {
         m_dt = m_dtOverride;
     } else if (ts.automatic) {
-        const double crit = criticalTimeStep();
-        if (!std::isfinite(crit))
+        const auto [crit, limiting] = limitingForceField();
+        if (!limiting)
             m_root->fail(m_root->dt, "dt=\"auto\" but no force field reports a stable time step; give dt in seconds");
+        if (!(crit > 0) || !std::isfinite(crit * m_root->dtSafety.get()))
+            limiting->fail("dt=\"auto\" but the stable time step it computes is " + shortNumber(crit) +
+                               " s, not a positive number: the wave speed of its material is not finite",
+                           {"check the moduli (mu, E, bulk modulus) and the density: a modulus near the largest "
+                            "double (1e308) overflows, and a zero density has no wave speed",
+                            "or give dt in seconds on the root node"});
         m_dt = crit * m_root->dtSafety.get();
     } else if (ts.value > 0) {
         m_dt = ts.value;
@@ -158,6 +190,12 @@ void Simulation::init() {
     SceneContext& ctx = m_root->context();
     ctx.time = m_time;
     ctx.step = m_step;
+}
+
+void Simulation::start() {
+    if (!m_initialised) init();
+    if (m_started) return;
+    m_started = true;
     for (auto* o : m_observers) {
         ScopedTimer t(o->timer());
         o->observe(m_time, m_step);
@@ -171,7 +209,8 @@ std::pair<double, const BaseForceField*> Simulation::limitingForceField() const 
     const BaseForceField* limiting = nullptr;
     for (auto& g : m_groups)
         for (auto* ff : g.forceFields)
-            if (const double c = ff->stableTimeStep(*g.state); c < crit) crit = c, limiting = ff;
+            if (const double c = ff->stableTimeStep(*g.state); c < crit || (std::isnan(c) && !std::isnan(crit)))
+                crit = c, limiting = ff;  // a NaN step is the worst: init names its force field
     return {crit, limiting};
 }
 
@@ -191,18 +230,28 @@ void Simulation::setDt(double dt) {
 }
 
 void Simulation::setOutputDir(const std::string& dir) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throwInputError({}, "cannot create output folder '" + dir + "': " + ec.message());
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throwOutputError({}, "output folder '" + dir + "' is a file, not a folder", {"give --output a folder (it is created when missing)"});
+    fs::create_directories(dir, ec);
+    if (ec) throwOutputError({}, "cannot create output folder '" + dir + "': " + ec.message());
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        throwOutputError({}, "cannot write into output folder '" + dir + "': " + std::strerror(errno));
     m_root->context().outputDir = dir;
 }
 
 const std::string& Simulation::outputDir() const { return m_root->context().outputDir; }
 
-void Simulation::step() {
-    if (!m_initialised) init();
+void Simulation::requireDt() const {
     if (!(m_dt > 0))
         throwInputError(m_root->loc(), "no time step: set dt on the root node (seconds or \"auto\") or pass --dt");
+}
+
+void Simulation::step() {
+    if (!m_initialised) init();
+    requireDt();
+    start();
     SceneContext& ctx = m_root->context();
     for (Component* c : m_all) c->beginStep(m_time, m_dt);
     for (auto& g : m_groups) {
@@ -224,6 +273,9 @@ void Simulation::step() {
 }
 
 void Simulation::run(long steps) {
+    if (!m_initialised) init();
+    if (steps > 0) requireDt();  // before the observers write the initial state
+    start();
     for (long i = 0; i < steps; ++i) step();
 }
 

@@ -1,6 +1,9 @@
 #pragma once
 /// Volume-mesh readers: Gmsh (.msh ASCII 1, 2.2, 4.1), VTK (.vtk legacy, .vtu XML) and TetGen
 /// (.node/.ele). Pure functions: no scene component here (the MeshLoader component wraps them).
+/// One reader per format (GmshReader, VTKReader, TetGenReader) on a shared TextScanner; this header
+/// is their only public face. A build without VTK (FASCIA_WITH_VTK=OFF) refuses .vtk and .vtu files
+/// with a located error ("this build has no VTK support: ...").
 ///
 /// Every problem with the input throws fascia::core::Error (ErrorKind::Input) located at the line of
 /// the mesh file where it is ("file:line: error: ..."), or at line 0 when no line is known (VTK files,

@@ -1,6 +1,8 @@
 #include "Monitor.h"
 #include "fascia/scene/Node.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -101,16 +103,25 @@ void Monitor::init() {
     const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
     m_path = (fs::path(node()->context().outputDir) / file).string();
     node()->context().claimOutput(m_path, *this);
+    m_header = h.str();  // the file is created at the first observation: init writes nothing,
+    m_out.reset();       // but refuses a file that could not be created (its nearest folder is not writable)
+    fs::path up = fs::path(m_path).parent_path();
     std::error_code ec;
-    fs::create_directories(fs::path(m_path).parent_path(), ec);
-    m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
-    if (!*m_out) fail(m_filename, "cannot write '" + m_path + "'");
-    *m_out << h.str() << "\n";
-    m_out->precision(12);
+    while (!up.empty() && !fs::exists(up, ec)) up = up.parent_path();
+    if (!up.empty() && (!fs::is_directory(up, ec) || ::access(up.c_str(), W_OK | X_OK) != 0))
+        fail(m_filename, "cannot write '" + m_path + "'");
 }
 
 void Monitor::observe(double t, long step) {
-    if (!m_out || step % m_every.get() != 0) return;
+    if (step % m_every.get() != 0) return;
+    if (!m_out) {
+        std::error_code ec;
+        fs::create_directories(fs::path(m_path).parent_path(), ec);
+        m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
+        if (!*m_out) fail(m_filename, "cannot write '" + m_path + "'");
+        *m_out << m_header << "\n";
+        m_out->precision(12);
+    }
     std::ostringstream row;
     row.precision(12);
     row << t;

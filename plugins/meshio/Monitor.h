@@ -37,6 +37,7 @@ private:
     std::vector<std::pair<std::string, int>> m_cellFields;  ///< (name, components)
     std::unique_ptr<std::ofstream> m_out;
     std::string m_path;
+    std::string m_header;  ///< the CSV header line, written when the file is created
 };
 
 } // namespace fascia::meshio

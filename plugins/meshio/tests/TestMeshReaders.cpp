@@ -855,8 +855,8 @@ TEST_CASE("Missing, unreadable and unknown files fail with a clear message", "[M
         REQUIRE(p.size() < sizeof addr.sun_path);
         std::copy(p.begin(), p.end(), addr.sun_path);
         REQUIRE(bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0);
-        // it exists and is no folder, but open() fails for everyone (ENXIO)
-        requireLocatedError(p, p, 0, {"cannot open mesh file '" + p + "' for reading", "permissions"});
+        // it exists and is no folder, but no regular file: refused from its type before open()
+        requireLocatedError(p, p, 0, {"'" + p + "' is a socket, not a mesh file", "must be a regular file"});
         close(fd);
     }
 }

@@ -1,5 +1,5 @@
 // TLED and HEML are two discretisations of the same tetrahedral P1 finite-element energy: for the
-// same law, mesh and positions their nodal forces must agree to round-off (DESIGN.md principle 3).
+// same law, mesh and positions their nodal forces must agree to round-off (docs/design.md, principle 3).
 #include "TledTestUtil.h"
 
 #include "fascia/heml/HEMLForceField.h"

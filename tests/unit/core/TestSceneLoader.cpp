@@ -497,7 +497,7 @@ TEST_CASE("A missing scene file or a folder is a clear error", "[SceneLoader]") 
     const std::string missing = (dir.path() / "missing.xml").string();
     auto e = errorOf([&] { Simulation::fromFile(missing); });
     REQUIRE(e);
-    CHECK(std::string(e->what()) == missing + ": error: cannot open '" + missing + "': no such file");
+    CHECK(std::string(e->what()) == missing + ":1: error: cannot open '" + missing + "': no such file");
     auto f = errorOf([&] { Simulation::fromFile(dir.path().string()); });
     REQUIRE(f);
     CHECK_THAT(f->what(), Contains("is a folder, not a scene file"));

@@ -18,7 +18,8 @@ struct SourceLoc {
 enum class ErrorKind {
     Input,        ///< invalid scene, mesh or value: exit code 2
     Simulation,   ///< NaN or instability while running: exit code 3
-    Internal      ///< anything else: exit code 1
+    Internal,     ///< anything else: exit code 1
+    Output        ///< an output file or folder that cannot be written: exit code 1
 };
 
 /// The one exception type of Fascia. what() is the whole formatted message, notes included.
@@ -44,6 +45,9 @@ private:
 /// Invalid input (scene, mesh, parameter value) located at loc: exit code 2.
 [[noreturn]] void throwInputError(const SourceLoc& loc, const std::string& message,
                                   std::vector<std::string> notes = {});
+/// An output that cannot be written (a folder that is a file, no permission): exit code 1.
+[[noreturn]] void throwOutputError(const SourceLoc& loc, const std::string& message,
+                                   std::vector<std::string> notes = {});
 /// The simulation failed while running (NaN, instability): exit code 3.
 [[noreturn]] void throwSimulationError(const std::string& message);
 

@@ -43,9 +43,12 @@ public:
     explicit Simulation(std::unique_ptr<Node> root);
     ~Simulation();
 
-    /// Initialises every component (dependencies first), assembles the mechanical groups,
-    /// resolves dt="auto" and observes the initial state.
+    /// Initialises every component (dependencies first), assembles the mechanical groups and
+    /// resolves dt="auto". Writes nothing: observers see the initial state in start().
     void init();
+    /// Lets the observers record the initial state (once; init() first when needed). step() and
+    /// run() call it, so a scene found invalid after init (no dt, too many steps) leaves no file.
+    void start();
     /// Applies options (call before init).
     void configure(const LoadOptions& options);
     /// One step of dt: for each group: clear forces, forces, constraints, integrate; then observers.
@@ -77,6 +80,8 @@ public:
 private:
     /// The smallest stable time step and the force field that sets it (null when none does).
     std::pair<double, const BaseForceField*> limitingForceField() const;
+    /// The located "no time step" error when dt is not set.
+    void requireDt() const;
     std::unique_ptr<Node> m_root;
     std::vector<MechanicalGroup> m_groups;
     std::vector<BaseObserver*> m_observers;
@@ -85,7 +90,7 @@ private:
     long m_step = 0;
     double m_timeAtDtChange = 0.0;  ///< time and step of the last dt change: time = t0 + (step - s0) dt
     long m_stepAtDtChange = 0;
-    bool m_initialised = false, m_finished = false;
+    bool m_initialised = false, m_started = false, m_finished = false;
 };
 
 } // namespace fascia::core

@@ -1,0 +1,302 @@
+#include "VTKReader.h"
+#include "ReaderSupport.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDataObjectTypes.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetReader.h>
+#include <vtkIdList.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObject.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace fascia::meshio::detail {
+namespace {
+
+/// Collects VTK's error messages, and warnings that report read errors; prints nothing.
+class CapturingOutputWindow : public vtkOutputWindow {
+public:
+    static CapturingOutputWindow* New();
+    vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
+    void DisplayText(const char*) override {}
+    void DisplayErrorText(const char* text) override {
+        if (text) errors.emplace_back(text);
+    }
+    void DisplayWarningText(const char* text) override { warning(text); }
+    void DisplayGenericWarningText(const char* text) override { warning(text); }
+    void DisplayDebugText(const char*) override {}
+    std::vector<std::string> errors;
+
+protected:
+    CapturingOutputWindow() = default;
+
+private:
+    void warning(const char* text) {
+        // the legacy reader reports bad or missing data ("Error reading ascii data...") as a warning
+        if (text && std::strstr(text, "rror")) errors.emplace_back(text);
+    }
+};
+vtkStandardNewMacro(CapturingOutputWindow)
+
+/// VTK's readers print their errors and return an empty output instead of throwing. While a catcher
+/// lives, VTK's messages go to it instead of the console (output window and vtkLogger's stderr);
+/// errors() says what went wrong.
+class VtkMessageCatcher {
+public:
+    VtkMessageCatcher()
+        : m_previous(vtkOutputWindow::GetInstance()), m_display(vtkObject::GetGlobalWarningDisplay()),
+          m_logVerbosity(vtkLogger::GetCurrentVerbosityCutoff()) {
+        vtkObject::GlobalWarningDisplayOn();  // off would drop the messages before our observers see them
+        vtkOutputWindow::SetInstance(m_window);
+        // messages of objects nobody observes (the XML parser, the pipeline) also go to vtkLogger
+        vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+        m_callback->SetClientData(this);
+        m_callback->SetCallback(&VtkMessageCatcher::onMessage);
+    }
+    ~VtkMessageCatcher() {
+        vtkLogger::SetStderrVerbosity(m_logVerbosity);
+        vtkOutputWindow::SetInstance(m_previous);
+        vtkObject::SetGlobalWarningDisplay(m_display);
+    }
+    VtkMessageCatcher(const VtkMessageCatcher&) = delete;
+    VtkMessageCatcher& operator=(const VtkMessageCatcher&) = delete;
+
+    void watch(vtkObject* obj) {
+        obj->AddObserver(vtkCommand::ErrorEvent, m_callback);
+        obj->AddObserver(vtkCommand::WarningEvent, m_callback);
+    }
+    bool hasErrors() const { return !m_errors.empty() || !m_window->errors.empty(); }
+    std::string errors() const {
+        std::vector<std::string> all = m_errors;
+        for (const auto& e : m_window->errors) all.push_back(clean(e));
+        std::string out;
+        for (const auto& e : all)
+            if (!e.empty() && out.find(e) == std::string::npos) out += (out.empty() ? "" : "; ") + e;
+        return out;
+    }
+
+private:
+    /// VTK writes "ERROR: In /path/file.cxx, line N\nvtkClass (0x...): message\n..."; keeps the
+    /// message's first line, and drops the pipeline's "returned failure for request" dumps.
+    static std::string clean(std::string text) {
+        if (text.compare(0, 6, "ERROR:") == 0 || text.compare(0, 8, "Warning:") == 0 ||
+            text.compare(0, 15, "Generic Warning") == 0) {
+            const auto nl = text.find('\n');
+            text = nl == std::string::npos ? std::string() : text.substr(nl + 1);
+        }
+        const auto colon = text.find("): ");
+        if (colon != std::string::npos && text.compare(0, 3, "vtk") == 0) text = text.substr(colon + 3);
+        const auto nl = text.find('\n');
+        if (nl != std::string::npos) text.resize(nl);
+        while (!text.empty() && std::isspace((unsigned char)text.back())) text.pop_back();
+        if (text.find("returned failure for request") != std::string::npos) return {};
+        return text;
+    }
+    static void onMessage(vtkObject*, unsigned long event, void* self, void* callData) {
+        auto* me = static_cast<VtkMessageCatcher*>(self);
+        if (!callData) return;
+        const char* text = static_cast<const char*>(callData);
+        if (event == vtkCommand::ErrorEvent || std::strstr(text, "rror")) me->m_errors.push_back(clean(text));
+    }
+
+    vtkSmartPointer<vtkOutputWindow> m_previous;
+    int m_display;
+    vtkLogger::Verbosity m_logVerbosity;
+    vtkNew<CapturingOutputWindow> m_window;
+    vtkNew<vtkCallbackCommand> m_callback;
+    std::vector<std::string> m_errors;
+};
+
+std::string vtkCellName(int type) {
+    switch (type) {
+    case VTK_EMPTY_CELL: return "empty cell";
+    case VTK_VERTEX: return "point";
+    case VTK_POLY_VERTEX: return "poly-point";
+    case VTK_LINE: return "line";
+    case VTK_POLY_LINE: return "polyline";
+    case VTK_TRIANGLE_STRIP: return "triangle strip";
+    case VTK_POLYGON: return "polygon";
+    case VTK_PIXEL: return "pixel";
+    case VTK_QUAD: return "quadrangle";
+    case VTK_WEDGE: return "prism";
+    case VTK_PYRAMID: return "pyramid";
+    case VTK_QUADRATIC_EDGE: return "3-node line";
+    case VTK_QUADRATIC_TRIANGLE: return "6-node triangle";
+    case VTK_QUADRATIC_QUAD: return "8-node quadrangle";
+    case VTK_QUADRATIC_TETRA: return "10-node tetrahedron";
+    case VTK_QUADRATIC_HEXAHEDRON: return "20-node hexahedron";
+    case VTK_QUADRATIC_WEDGE: return "15-node prism";
+    case VTK_QUADRATIC_PYRAMID: return "13-node pyramid";
+    case VTK_TRIQUADRATIC_HEXAHEDRON: return "27-node hexahedron";
+    case VTK_POLYHEDRON: return "polyhedron";
+    default: {
+        const char* cls = vtkCellTypes::GetClassNameFromTypeId(type);
+        return "VTK cell type " + std::to_string(type) + (cls && *cls ? std::string(" (") + cls + ")" : std::string());
+    }
+    }
+}
+
+/// A .vtu through vtkXMLUnstructuredGridReader; VTK's complaints become a located error.
+vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMessageCatcher& catcher) {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    catcher.watch(reader);
+    if (!reader->CanReadFile(path.c_str()))
+        fail(path, 0,
+             "'" + path + "' is not a VTK XML unstructured grid: a .vtu file starts with <VTKFile "
+             "type=\"UnstructuredGrid\" ...>; check that the file is complete and of the right kind");
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    if (catcher.hasErrors() || reader->GetErrorCode() != 0)
+        fail(path, 0,
+             "VTK could not read '" + path + "'" + (catcher.hasErrors() ? ": " + catcher.errors() : std::string()) +
+                 "; check that the file is a complete VTK XML unstructured grid");
+    return reader->GetOutput();
+}
+
+/// A legacy .vtk: its header first (a dataset that is not an unstructured grid is named in the
+/// error), then the grid through vtkUnstructuredGridReader.
+vtkSmartPointer<vtkUnstructuredGrid> readLegacyGrid(const std::string& path, VtkMessageCatcher& catcher) {
+    {
+        // vtkDataSetReader reads the header only, to name the dataset kind when it is not a grid
+        vtkNew<vtkDataSetReader> probe;
+        catcher.watch(probe);
+        probe->SetFileName(path.c_str());
+        const int type = probe->ReadOutputType();
+        if (type < 0 || catcher.hasErrors())
+            fail(path, 0,
+                 "'" + path + "' is not a VTK legacy file VTK can read" +
+                     (catcher.hasErrors() ? " (" + catcher.errors() + ")" : std::string()) +
+                     "; it must start with '# vtk DataFile Version x.x', a title line, ASCII or BINARY, and "
+                     "'DATASET UNSTRUCTURED_GRID'");
+        if (type != VTK_UNSTRUCTURED_GRID) {
+            const char* name = vtkDataObjectTypes::GetClassNameFromTypeId(type);
+            fail(path, 0,
+                 "'" + path + "' holds a " + (name ? std::string(name) : "type " + std::to_string(type)) +
+                     " dataset; only DATASET UNSTRUCTURED_GRID has volume cells (tetrahedra, hexahedra)");
+        }
+    }
+    vtkNew<vtkUnstructuredGridReader> reader;
+    catcher.watch(reader);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkUnstructuredGrid* out = reader->GetOutput();
+    if (catcher.hasErrors() || reader->GetErrorCode() != 0 || !out)
+        fail(path, 0,
+             "VTK could not read '" + path + "'" + (catcher.hasErrors() ? ": " + catcher.errors() : std::string()) +
+                 "; check that the file is complete");
+    return out;
+}
+
+/// Points, kept cells with their groups, and the cell arrays of grid into b.
+void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder& b) {
+    const vtkIdType nPoints = grid->GetNumberOfPoints();
+    const vtkIdType nCells = grid->GetNumberOfCells();
+    if (nPoints == 0 && nCells == 0)
+        fail(path, 0, "'" + path + "' has no points and no cells: VTK read an empty grid; is the file complete?");
+    auto& mesh = b.mesh;
+    mesh.points.resize(size_t(nPoints));
+    for (vtkIdType i = 0; i < nPoints; ++i) {
+        double x[3];
+        grid->GetPoint(i, x);
+        mesh.points[size_t(i)] = Vec3(x[0], x[1], x[2]);
+    }
+
+    // physical groups
+    vtkDataArray* groups = nullptr;
+    vtkCellData* cd = grid->GetCellData();
+    for (const char* gname : {"gmsh:physical", "CellEntityIds"}) {
+        vtkDataArray* a = cd ? cd->GetArray(gname) : nullptr;
+        if (a && a->GetNumberOfComponents() == 1 && a->GetNumberOfTuples() == nCells) {
+            groups = a;
+            break;
+        }
+    }
+
+    std::vector<vtkIdType> tetCells, hexCells;
+    vtkNew<vtkIdList> ids;
+    std::vector<int> nodes;
+    for (vtkIdType c = 0; c < nCells; ++c) {
+        const int type = grid->GetCellType(c);
+        grid->GetCellPoints(c, ids);
+        nodes.resize(size_t(ids->GetNumberOfIds()));
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
+            const vtkIdType v = ids->GetId(k);
+            if (v < 0 || v >= nPoints)
+                fail(path, 0,
+                     "cell " + std::to_string(c) + " names point " + std::to_string(v) + ", but the file has " +
+                         plural(nPoints, "point") + " (0-based indices 0 to " + std::to_string(nPoints - 1) + ")");
+            nodes[size_t(k)] = int(v);
+        }
+        const int group = groups ? int(std::lround(groups->GetComponent(c, 0))) : 0;
+        if (type == VTK_TETRA && nodes.size() == 4) {
+            mesh.tetrahedra.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+            mesh.tetrahedronGroup.push_back(group);
+            b.origin.tetNumber.push_back(c);
+            tetCells.push_back(c);
+        } else if ((type == VTK_HEXAHEDRON || type == VTK_VOXEL) && nodes.size() == 8) {
+            std::array<int, 8> h;
+            if (type == VTK_VOXEL)  // voxels number their corners like a grid: (0,1,3,2, 4,5,7,6)
+                h = {nodes[0], nodes[1], nodes[3], nodes[2], nodes[4], nodes[5], nodes[7], nodes[6]};
+            else
+                std::copy(nodes.begin(), nodes.end(), h.begin());
+            mesh.hexahedra.push_back(h);
+            mesh.hexahedronGroup.push_back(group);
+            b.origin.hexNumber.push_back(c);
+            hexCells.push_back(c);
+        } else if (type == VTK_TRIANGLE && nodes.size() == 3) {
+            mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
+            mesh.triangleGroup.push_back(group);
+        } else {
+            b.skip(vtkCellName(type));
+        }
+        if (group != 0) b.markGroup(-1, group, nodes.data(), nodes.size());
+    }
+
+    // per-cell arrays with 1 or 3 components, restricted to the volume cells (tets first, then hexes)
+    if (cd) {
+        for (int a = 0; a < cd->GetNumberOfArrays(); ++a) {
+            vtkDataArray* arr = cd->GetArray(a);
+            if (!arr || !arr->GetName() || arr->GetNumberOfTuples() != nCells) continue;
+            const int nc = arr->GetNumberOfComponents();
+            if (nc != 1 && nc != 3) continue;
+            std::vector<double> values;
+            values.reserve((tetCells.size() + hexCells.size()) * size_t(nc));
+            for (const auto* list : {&tetCells, &hexCells})
+                for (vtkIdType c : *list)
+                    for (int k = 0; k < nc; ++k) values.push_back(arr->GetComponent(c, k));
+            mesh.cellArrays[arr->GetName()] = std::move(values);
+        }
+    }
+}
+
+} // namespace
+
+void readVtk(const std::string& path, bool xml, MeshBuilder& b) {
+    checkReadable(path);
+    b.origin.elementWord = "cell";
+    VtkMessageCatcher catcher;  // for the whole read: VTK prints nothing to the console
+    b.report->format = xml ? "VTK XML" : "VTK legacy";
+    const vtkSmartPointer<vtkUnstructuredGrid> grid = xml ? readXmlGrid(path, catcher) : readLegacyGrid(path, catcher);
+    convertGrid(grid, path, b);
+}
+
+} // namespace fascia::meshio::detail

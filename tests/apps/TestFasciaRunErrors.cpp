@@ -1,0 +1,224 @@
+/// fascia-run on scenes that must fail: located messages, the documented exit codes (2 for a bad
+/// scene, 1 for an output that cannot be written), and no file written when the run fails before it
+/// starts. Every child run is bounded by `timeout`, so a regression that blocks (on a FIFO) fails
+/// its test instead of hanging the suite.
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+/// A temporary folder with the scenes and the output folder of one test.
+class Workspace {
+public:
+    Workspace() {
+        std::string tmpl = (fs::temp_directory_path() / "fascia-run-errors-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        m_dir = fs::canonical(tmpl);
+    }
+    ~Workspace() {
+        std::error_code ec;
+        fs::remove_all(m_dir, ec);
+    }
+    const fs::path& dir() const { return m_dir; }
+    std::string write(const std::string& name, const std::string& text) const {
+        const fs::path p = m_dir / name;
+        fs::create_directories(p.parent_path());
+        std::ofstream(p) << text;
+        return p.string();
+    }
+    struct Result {
+        int code = -1;
+        std::string out, err;
+    };
+    /// Runs fascia-run in dir() with args (shell words), killed after 60 s (exit code 124).
+    Result run(const std::string& args) const {
+        const std::string out = (m_dir / ".stdout").string(), err = (m_dir / ".stderr").string();
+        const std::string cmd = "cd '" + m_dir.string() + "' && timeout -s KILL 60 '" FASCIA_RUN "' " + args + " >'" +
+                                out + "' 2>'" + err + "' </dev/null";
+        const int status = std::system(cmd.c_str());
+        Result r;
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+    /// The files under folder (relative to dir()), sorted.
+    std::vector<std::string> filesIn(const std::string& folder) const {
+        std::vector<std::string> out;
+        std::error_code ec;
+        for (auto& e : fs::recursive_directory_iterator(m_dir / folder, ec)) out.push_back(e.path().filename().string());
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+
+private:
+    static std::string slurp(const std::string& f) {
+        std::ifstream in(f);
+        std::ostringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    }
+    fs::path m_dir;
+};
+
+/// A one-cube HEML scene with a Monitor and a VTKExporter (both write at the first observation).
+/// Line 1 is the root node; the force field is on line 6, the exporter on line 9.
+std::string cube(const std::string& rootAttrs, const std::string& mu = "1000", const std::string& exporterAttrs = "",
+                 const std::string& monitorAttrs = "", const std::string& extra = "") {
+    return "<Node name=\"root\" " + rootAttrs + ">\n"
+           "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"1 1 1\" element=\"tetrahedra6\"/>\n"
+           "  <MechanicalObject name=\"state\"/>\n"
+           "  <LumpedMass density=\"1000\"/>\n"
+           "  <StVenantKirchhoff lambda=\"1500\" mu=\"" + mu + "\"/>\n"
+           "  <HEMLForceField name=\"heml\"/>\n"
+           "  <SemiImplicitEuler damping=\"20\"/>\n"
+           "  <Monitor name=\"curve\" indices=\"7\" " + monitorAttrs + "/>\n"
+           "  <VTKExporter name=\"cube\" " + exporterAttrs + "/>\n" + extra +
+           "</Node>\n";
+}
+
+} // namespace
+
+TEST_CASE("The cube scene of these tests runs and writes its files", "[fascia-run]") {
+    // the control for the "nothing written" tests below: the same scene with dt writes all four files
+    Workspace w;
+    w.write("cube.xml", cube("dt=\"1e-4\""));
+    auto r = w.run("cube.xml --steps 2 --output out");
+    INFO(r.err);
+    CHECK(r.code == 0);
+    CHECK(w.filesIn("out") ==
+          std::vector<std::string>{"cube.pvd", "cube_000000.vtu", "cube_000001.vtu", "cube_000002.vtu", "curve.csv"});
+}
+
+TEST_CASE("A scene that fails before the run starts leaves no file behind", "[fascia-run]") {
+    Workspace w;
+    SECTION("no dt") {
+        w.write("s.xml", cube(""));
+        auto r = w.run("s.xml --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:1: error: no time step"));
+    }
+    SECTION("endTime of 1e300 s") {
+        w.write("s.xml", cube("dt=\"0.01\" endTime=\"1e300\""));
+        auto r = w.run("s.xml --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:1: error: time ") && Contains("is more than 1e12 steps"));
+    }
+    SECTION("mu of 1e308 with dt auto") {
+        w.write("s.xml", cube("dt=\"auto\"", "1e308"));
+        auto r = w.run("s.xml --output out");
+        INFO(r.err);
+        CHECK(r.code == 2);
+        // says why: the stable step the force field computes, not "set dt"
+        CHECK_THAT(r.err, StartsWith("s.xml:6: error: HEMLForceField 'heml': dt=\"auto\" but the stable time step it "
+                                     "computes is ") &&
+                              Contains("not a positive number"));
+        CHECK_THAT(r.err, !Contains("no time step"));
+    }
+    SECTION("an output outside the output folder") {
+        w.write("s.xml", cube("dt=\"0.01\"", "1000", "filename=\"../x\""));
+        auto r = w.run("s.xml --steps 1 --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:9: error: VTKExporter 'cube': writes '") &&
+                              Contains("', which is outside the output folder 'out'"));
+        CHECK_FALSE(fs::exists(w.dir() / "x.pvd"));
+        CHECK_FALSE(fs::exists(w.dir() / "x_000000.vtu"));
+    }
+    SECTION("an absolute Monitor path") {
+        const std::string abs = (w.dir() / "abs.csv").string();
+        w.write("s.xml", cube("dt=\"0.01\"", "1000", "", "filename=\"" + abs + "\""));
+        auto r = w.run("s.xml --steps 1 --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:8: error: Monitor 'curve': writes '" + abs +
+                                     "', which is outside the output folder 'out'"));
+        CHECK_FALSE(fs::exists(abs));
+    }
+    SECTION("a second integrator in the node") {
+        w.write("s.xml", cube("dt=\"0.01\"", "1000", "", "", "  <SemiImplicitEuler name=\"again\"/>\n"));
+        auto r = w.run("s.xml --steps 1 --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:10: error: SemiImplicitEuler 'again': a second integrator in node 'root'"));
+    }
+    SECTION("a second root element") {
+        w.write("s.xml", cube("dt=\"0.01\"") + "<Node name=\"other\"/>\n");
+        auto r = w.run("s.xml --steps 1 --output out");
+        CHECK(r.code == 2);
+        CHECK_THAT(r.err, StartsWith("s.xml:11: error: a second root element <Node> after <Node> (line 1)"));
+    }
+    CHECK(w.filesIn("out").empty());
+}
+
+TEST_CASE("A missing or folder or empty or FIFO scene is an error at its line 1 with exit code 2", "[fascia-run]") {
+    Workspace w;
+    auto r = w.run("missing.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, StartsWith("missing.xml:1: error: cannot open 'missing.xml': no such file"));
+    fs::create_directories(w.dir() / "folder.xml");
+    r = w.run("folder.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, StartsWith("folder.xml:1: error: 'folder.xml' is a folder, not a scene file"));
+    w.write("empty.xml", "");
+    r = w.run("empty.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, StartsWith("empty.xml:1: error: the scene is empty"));
+    // a FIFO nobody writes to: opening it would block; it is refused from its type
+    REQUIRE(::mkfifo((w.dir() / "fifo.xml").c_str(), 0600) == 0);
+    r = w.run("fifo.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, StartsWith("fifo.xml:1: error: 'fifo.xml' is a FIFO (named pipe), not a scene file"));
+    r = w.run("/dev/zero");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, StartsWith("/dev/zero:1: error: '/dev/zero' is a character device, not a scene file"));
+}
+
+TEST_CASE("A mesh file that is a FIFO or a device is refused without blocking", "[fascia-run]") {
+    Workspace w;
+    REQUIRE(::mkfifo((w.dir() / "mesh.msh").c_str(), 0600) == 0);
+    const std::string body = "  <MeshLoader name=\"mesh\" filename=\"FILE\"/>\n  <MechanicalObject/>\n</Node>\n";
+    w.write("fifo.xml", "<Node name=\"root\" dt=\"0.01\">\n" + std::regex_replace(body, std::regex("FILE"), "mesh.msh"));
+    auto r = w.run("fifo.xml --steps 1");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("is a FIFO (named pipe), not a mesh file"));
+    // /dev/zero under a mesh name (a link): it never ends, and is refused from its type
+    fs::create_symlink("/dev/zero", w.dir() / "zero.vtk");
+    w.write("zero.xml", "<Node name=\"root\" dt=\"0.01\">\n" + std::regex_replace(body, std::regex("FILE"), "zero.vtk"));
+    r = w.run("zero.xml --steps 1");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("zero.vtk' is a character device, not a mesh file"));
+}
+
+TEST_CASE("An output folder that is a file or cannot be written gives exit code 1 naming it", "[fascia-run]") {
+    Workspace w;
+    w.write("s.xml", cube("dt=\"0.01\""));
+    w.write("taken", "a file");
+    auto r = w.run("s.xml --steps 1 --output taken");
+    CHECK(r.code == 1);
+    CHECK_THAT(r.err, StartsWith("error: output folder 'taken' is a file, not a folder"));
+    r = w.run("s.xml --steps 1 --output taken/sub");
+    CHECK(r.code == 1);
+    CHECK_THAT(r.err, StartsWith("error: cannot create output folder 'taken/sub': "));
+    if (::geteuid() != 0) {  // root may write anywhere
+        fs::create_directories(w.dir() / "ro");
+        fs::permissions(w.dir() / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+        r = w.run("s.xml --steps 1 --output ro");
+        fs::permissions(w.dir() / "ro", fs::perms::owner_all);
+        CHECK(r.code == 1);
+        CHECK_THAT(r.err, StartsWith("error: cannot write into output folder 'ro': "));
+    }
+}

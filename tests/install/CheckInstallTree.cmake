@@ -1,0 +1,70 @@
+# cmake -DBUILD_DIR=<build> -DWORK_DIR=<empty folder> -P CheckInstallTree.cmake
+#
+# Installs the build into WORK_DIR/prefix and checks that the installed tree holds headers,
+# libraries, the programs and the CMake package only:
+#   - no source file (.cpp) anywhere, no CMakeLists.txt outside lib/cmake, no tests/ folder;
+#   - include/ holds headers (.h) only, lib/cmake/ CMake files (.cmake) only, lib/ otherwise
+#     libraries (.so, .so.N..., .a) only, bin/ the programs only (fascia-run, fascia-bench);
+#   - nothing at the top of the prefix but bin/, include/ and lib/.
+# Every offending path is printed, then the check fails.
+foreach(v BUILD_DIR WORK_DIR)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "CheckInstallTree.cmake: -D${v}=... is required")
+  endif()
+endforeach()
+
+set(prefix ${WORK_DIR}/prefix)
+file(REMOVE_RECURSE ${prefix})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cmake --install failed (${rc}):\n${out}\n${err}")
+endif()
+
+file(GLOB_RECURSE files LIST_DIRECTORIES false RELATIVE ${prefix} ${prefix}/*)
+file(GLOB_RECURSE dirs LIST_DIRECTORIES true RELATIVE ${prefix} ${prefix}/*)
+list(REMOVE_ITEM dirs ${files})
+if(NOT files)
+  message(FATAL_ERROR "the install into ${prefix} holds no files")
+endif()
+
+set(bad)
+foreach(d ${dirs})
+  if(d MATCHES "(^|/)tests$")
+    list(APPEND bad "${d}/: a tests folder")
+  endif()
+endforeach()
+foreach(f ${files})
+  if(f MATCHES "\\.(cpp|cc|cxx|c)$")
+    list(APPEND bad "${f}: a source file")
+  elseif(f MATCHES "(^|/)CMakeLists\\.txt$" AND NOT f MATCHES "^lib/cmake/")
+    list(APPEND bad "${f}: a CMakeLists.txt outside lib/cmake")
+  elseif(f MATCHES "^include/")
+    if(NOT f MATCHES "\\.h$")
+      list(APPEND bad "${f}: not a header (include/ holds .h files only)")
+    endif()
+  elseif(f MATCHES "^lib/cmake/")
+    if(NOT f MATCHES "\\.cmake$")
+      list(APPEND bad "${f}: not a CMake file (lib/cmake/ holds the package only)")
+    endif()
+  elseif(f MATCHES "^lib/")
+    if(NOT f MATCHES "\\.(so(\\.[0-9]+)*|a)$")
+      list(APPEND bad "${f}: not a library")
+    endif()
+  elseif(f MATCHES "^bin/")
+    if(NOT f MATCHES "^bin/fascia-(run|bench)$")
+      list(APPEND bad "${f}: not one of the programs")
+    endif()
+  else()
+    list(APPEND bad "${f}: outside bin/, include/ and lib/")
+  endif()
+endforeach()
+
+list(LENGTH files n)
+if(bad)
+  list(LENGTH bad nbad)
+  list(JOIN bad "\n  " text)
+  message(FATAL_ERROR "the installed tree (${n} files) holds ${nbad} thing(s) it must not:\n  ${text}")
+endif()
+message(STATUS "installed tree: ${n} files, headers, libraries, programs and the CMake package only")
+file(REMOVE_RECURSE ${prefix})
