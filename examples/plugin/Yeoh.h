@@ -6,21 +6,29 @@
 namespace example {
 
 /// Yeoh: W = C10 (I1bar - 3) + C20 (I1bar - 3)^2 + C30 (I1bar - 3)^3 + kappa/2 (J - 1)^2.
+/// Written the documented way (docs/design.md, "how to add a law"): isochoric() and volumetric()
+/// templated on the scalar T, parameters stored as double and converted to T once per call,
+/// constants written T(...), so that the same law runs in double and in float (and, FASCIA_HD, in
+/// CUDA device code).
 struct YeohLaw {
     static constexpr unsigned uses = 0;
     double C10 = 0, C20 = 0, C30 = 0, kappa = 0;
     bool stressFreeAtRest() const { return true; }
-    void isochoric(const fascia::materials::Invariants& in, fascia::materials::Response& r) const {
-        const double t = fascia::materials::invCbrt(in.J), t2 = t * t;  // J^(-1/3), J^(-2/3)
-        const double x = in.I1 * t2 - 3.0;
-        const double dWdI1bar = C10 + x * (2 * C20 + 3 * C30 * x);
+    template <class T>
+    FASCIA_HD void isochoric(const fascia::materials::InvariantsT<T>& in, fascia::materials::ResponseT<T>& r) const {
+        const T C10 = T(this->C10), C20 = T(this->C20), C30 = T(this->C30);
+        const T t = fascia::materials::invCbrt(in.J), t2 = t * t;  // J^(-1/3), J^(-2/3)
+        const T x = in.I1 * t2 - T(3);
+        const T dWdI1bar = C10 + x * (T(2) * C20 + T(3) * C30 * x);
         r.W += x * (C10 + x * (C20 + C30 * x));
         r.dI1 += dWdI1bar * t2;
-        r.dJiso += dWdI1bar * in.I1 * (-2.0 / 3.0) * t2 * t2 * t;  // d(I1 J^-2/3)/dJ = -2/3 I1 J^-5/3
+        r.dJiso += dWdI1bar * in.I1 * T(-2.0 / 3.0) * t2 * t2 * t;  // d(I1 J^-2/3)/dJ = -2/3 I1 J^-5/3
     }
-    void volumetric(double J, double& W, double& dW, double& d2W) const {
-        W = 0.5 * kappa * (J - 1) * (J - 1);
-        dW = kappa * (J - 1);
+    template <class T>
+    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
+        const T kappa = T(this->kappa);
+        W = T(0.5) * kappa * (J - T(1)) * (J - T(1));
+        dW = kappa * (J - T(1));
         d2W = kappa;
     }
 };

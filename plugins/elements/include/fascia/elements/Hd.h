@@ -1,15 +1,5 @@
 #pragma once
-/// FASCIA_HD marks the element-level functions of the element layer (3x3 vocabulary, geometry,
-/// stress): `__host__ __device__` under nvcc, so that a CUDA path can call the same code, and
-/// nothing otherwise. FASCIA_INLINE forces inlining into the vectorised batch loops.
-#if defined(__CUDACC__)
-#define FASCIA_HD __host__ __device__
-#define FASCIA_INLINE __forceinline__
-#else
-#define FASCIA_HD
-#if defined(__GNUC__)
-#define FASCIA_INLINE inline __attribute__((always_inline))
-#else
-#define FASCIA_INLINE inline
-#endif
-#endif
+/// The host/device macros FASCIA_HD and FASCIA_INLINE of the element layer's functions (3x3
+/// vocabulary, geometry, stress). They are defined in the core (fascia/base/Hd.h, with the rules for
+/// code that must compile for the GPU), since the laws in fascia/materials use them too.
+#include "fascia/base/Hd.h"

@@ -23,37 +23,42 @@ struct ArrudaBoyceLaw {
     double lambdaM = 0;  ///< locking stretch, > 1
     double kappa = 0;    ///< bulk modulus (Pa)
     bool stressFreeAtRest() const { return true; }
-    /// The coefficients mu C_i / lambdaM^(2i-2) of W, i = 1..5.
-    void coefficients(double a[5]) const {
+    /// The coefficients mu C_i / lambdaM^(2i-2) of W, i = 1..5 (computed in double, then rounded to T).
+    template <class T>
+    FASCIA_HD void coefficients(T a[5]) const {
         const double b = 1.0 / (lambdaM * lambdaM);
-        a[0] = mu * 0.5;
-        a[1] = mu * (1.0 / 20.0) * b;
-        a[2] = mu * (11.0 / 1050.0) * b * b;
-        a[3] = mu * (19.0 / 7000.0) * b * b * b;
-        a[4] = mu * (519.0 / 673750.0) * b * b * b * b;
+        a[0] = T(mu * 0.5);
+        a[1] = T(mu * (1.0 / 20.0) * b);
+        a[2] = T(mu * (11.0 / 1050.0) * b * b);
+        a[3] = T(mu * (19.0 / 7000.0) * b * b * b);
+        a[4] = T(mu * (519.0 / 673750.0) * b * b * b * b);
     }
     /// dW/dI1bar at I1bar = x.
-    double dWdI1bar(double x) const {
-        double a[5];
+    template <class T>
+    FASCIA_HD T dWdI1bar(T x) const {
+        T a[5];
         coefficients(a);
-        return a[0] + x * (2.0 * a[1] + x * (3.0 * a[2] + x * (4.0 * a[3] + x * 5.0 * a[4])));
+        return a[0] + x * (T(2) * a[1] + x * (T(3) * a[2] + x * (T(4) * a[3] + x * T(5) * a[4])));
     }
     /// Small-strain shear modulus 2 dW/dI1bar at I1bar = 3.
     double initialShearModulus() const { return 2.0 * dWdI1bar(3.0); }
-    void isochoric(const Invariants& in, Response& r) const {
-        const double t = invCbrt(in.J), t2 = t * t, iJ = t2 * t;
-        const double x = in.I1 * t2, d = x - 3.0;
-        const double S2 = x * d + 3.0 * d, S3 = x * S2 + 9.0 * d, S4 = x * S3 + 27.0 * d, S5 = x * S4 + 81.0 * d;
-        double a[5];
+    template <class T>
+    FASCIA_HD void isochoric(const InvariantsT<T>& in, ResponseT<T>& r) const {
+        const T t = invCbrt(in.J), t2 = t * t, iJ = t2 * t;
+        const T x = in.I1 * t2, d = x - T(3);
+        const T S2 = x * d + T(3) * d, S3 = x * S2 + T(9) * d, S4 = x * S3 + T(27) * d, S5 = x * S4 + T(81) * d;
+        T a[5];
         coefficients(a);
         r.W += a[0] * d + a[1] * S2 + a[2] * S3 + a[3] * S4 + a[4] * S5;
-        const double w = dWdI1bar(x);
+        const T w = dWdI1bar(x);
         r.dI1 += w * t2;
-        r.dJiso += -(2.0 / 3.0) * w * x * iJ;
+        r.dJiso += -T(2.0 / 3.0) * w * x * iJ;
     }
-    void volumetric(double J, double& W, double& dW, double& d2W) const {
-        W = 0.5 * kappa * (J - 1.0) * (J - 1.0);
-        dW = kappa * (J - 1.0);
+    template <class T>
+    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
+        const T kappa = T(this->kappa);
+        W = T(0.5) * kappa * (J - T(1)) * (J - T(1));
+        dW = kappa * (J - T(1));
         d2W = kappa;
     }
 };

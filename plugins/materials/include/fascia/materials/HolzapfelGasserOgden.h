@@ -39,26 +39,31 @@ struct HolzapfelGasserOgdenLaw {
     double K = 0;           ///< bulk modulus of K/2 (ln J)^2 (Pa)
     bool twoFamilies = false;
     bool stressFreeAtRest() const { return true; }
-    void isochoric(const Invariants& in, Response& r) const {
-        const double t = invCbrt(in.J), t2 = t * t, iJ = t2 * t;
-        const double I1b = in.I1 * t2, I4b = in.I4 * t2, I6b = in.I6 * t2;
-        const double d1 = I1b - 3.0, b = 1.0 - 3.0 * dispersion;
-        const double E4 = std::max(dispersion * d1 + b * (I4b - 1.0), 0.0);
-        const double E6 = twoFamilies ? std::max(dispersion * d1 + b * (I6b - 1.0), 0.0) : 0.0;
-        const double x4 = k2 * E4 * E4, x6 = k2 * E6 * E6;
-        const double g4 = k1 * E4 * fastExp(x4), g6 = k1 * E6 * fastExp(x6);
-        r.W += 0.5 * mu * d1 + 0.5 * k1 * (E4 * E4 * fastExprel(x4) + E6 * E6 * fastExprel(x6));
-        const double w1 = 0.5 * mu + dispersion * (g4 + g6), w4 = b * g4, w6 = b * g6;
+    template <class T>
+    FASCIA_HD void isochoric(const InvariantsT<T>& in, ResponseT<T>& r) const {
+        const T mu = T(this->mu), k1 = T(this->k1), k2 = T(this->k2);
+        const T dispersion = T(this->dispersion), b = T(1.0 - 3.0 * this->dispersion);
+        const T t = invCbrt(in.J), t2 = t * t, iJ = t2 * t;
+        const T I1b = in.I1 * t2, I4b = in.I4 * t2, I6b = in.I6 * t2;
+        const T d1 = I1b - T(3);
+        const T E4 = std::max(dispersion * d1 + b * (I4b - T(1)), T(0));
+        const T E6 = twoFamilies ? std::max(dispersion * d1 + b * (I6b - T(1)), T(0)) : T(0);
+        const T x4 = k2 * E4 * E4, x6 = k2 * E6 * E6;
+        const T g4 = k1 * E4 * fastExp(x4), g6 = k1 * E6 * fastExp(x6);
+        r.W += T(0.5) * mu * d1 + T(0.5) * k1 * (E4 * E4 * fastExprel(x4) + E6 * E6 * fastExprel(x6));
+        const T w1 = T(0.5) * mu + dispersion * (g4 + g6), w4 = b * g4, w6 = b * g6;
         r.dI1 += w1 * t2;
         r.dI4 += w4 * t2;
         r.dI6 += w6 * t2;
-        r.dJiso += -(2.0 / 3.0) * (w1 * I1b + w4 * I4b + w6 * I6b) * iJ;
+        r.dJiso += -T(2.0 / 3.0) * (w1 * I1b + w4 * I4b + w6 * I6b) * iJ;
     }
-    void volumetric(double J, double& W, double& dW, double& d2W) const {
-        const double lnJ = fastLog(J), iJ = 1.0 / J;
-        W = 0.5 * K * lnJ * lnJ;
+    template <class T>
+    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
+        const T K = T(this->K);
+        const T lnJ = fastLog(J), iJ = T(1) / J;
+        W = T(0.5) * K * lnJ * lnJ;
         dW = K * lnJ * iJ;
-        d2W = K * (1.0 - lnJ) * iJ * iJ;
+        d2W = K * (T(1) - lnJ) * iJ * iJ;
     }
 };
 

@@ -21,19 +21,23 @@ struct UncoupledMooneyRivlinLaw {
     double c1 = 0, c2 = 0;  ///< Pa
     double k = 0;           ///< bulk modulus (Pa)
     bool stressFreeAtRest() const { return true; }
-    void isochoric(const Invariants& in, Response& r) const {
-        const double t = invCbrt(in.J), t2 = t * t, t4 = t2 * t2, iJ = t2 * t;
-        const double I1b = in.I1 * t2, I2b = in.I2 * t4;
-        r.W += c1 * (I1b - 3.0) + c2 * (I2b - 3.0);
+    template <class T>
+    FASCIA_HD void isochoric(const InvariantsT<T>& in, ResponseT<T>& r) const {
+        const T c1 = T(this->c1), c2 = T(this->c2);
+        const T t = invCbrt(in.J), t2 = t * t, t4 = t2 * t2, iJ = t2 * t;
+        const T I1b = in.I1 * t2, I2b = in.I2 * t4;
+        r.W += c1 * (I1b - T(3)) + c2 * (I2b - T(3));
         r.dI1 += c1 * t2;
         r.dI2 += c2 * t4;
-        r.dJiso += -(2.0 / 3.0) * (c1 * I1b + 2.0 * c2 * I2b) * iJ;
+        r.dJiso += -T(2.0 / 3.0) * (c1 * I1b + T(2) * c2 * I2b) * iJ;
     }
-    void volumetric(double J, double& W, double& dW, double& d2W) const {
-        const double lnJ = fastLog(J), iJ = 1.0 / J;
-        W = 0.5 * k * lnJ * lnJ;
+    template <class T>
+    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
+        const T k = T(this->k);
+        const T lnJ = fastLog(J), iJ = T(1) / J;
+        W = T(0.5) * k * lnJ * lnJ;
         dW = k * lnJ * iJ;
-        d2W = k * (1.0 - lnJ) * iJ * iJ;
+        d2W = k * (T(1) - lnJ) * iJ * iJ;
     }
 };
 
