@@ -5,12 +5,17 @@
 /// It expands to `__host__ __device__` under nvcc and to nothing otherwise, so that host code is
 /// unchanged. FASCIA_INLINE forces inlining into the vectorised batch loops.
 ///
-/// Rules for code under FASCIA_HD (device code has no libstdc++ behind it):
-/// - no libm (std::sqrt, std::exp, std::log, std::pow, std::cbrt, std::abs): the laws use
-///   materials::invCbrt, fastLog, fastExp, fastExprel, and comparisons instead of std::abs;
-/// - std::min and std::max are fine: they are constexpr, which nvcc accepts in device code with
-///   --expt-relaxed-constexpr (the cuda build must pass it); std::memcpy of a scalar's bits is
-///   fine too (device code has memcpy);
+/// Rules for code under FASCIA_HD, as nvcc 13 checks them (plugins/materials/tests/LawsOnDevice.cu,
+/// the test materials_device_compile where nvcc is found):
+/// - every function it calls is FASCIA_HD too. nvcc only warns about a call to a host-only function
+///   (warning 20014), so the cuda build must turn warnings into errors (-Werror all-warnings, with
+///   -diag-suppress 20012 for Eigen's defaulted constructors);
+/// - std::min and std::max are fine: they are constexpr, which device code may call with
+///   --expt-relaxed-constexpr (the cuda build must pass it; without it they are error 20013);
+///   std::memcpy of a scalar's bits and std::abs are fine as they are;
+/// - no libm in the laws (std::exp, std::log, std::pow, std::cbrt): materials::invCbrt, fastLog,
+///   fastExp and fastExprel replace them, on the CPU because they vectorise (docs/performance.md,
+///   lesson 1), on the GPU because they are the same code in both places;
 /// - no allocation, no exception, no virtual call.
 /// It lives in the core because every layer that has per-element code (materials, elements,
 /// viscoelastic) needs it and the core is the only thing they all include.
