@@ -243,7 +243,7 @@ TEST_CASE("invCbrt in float is within 2 float roundoffs of the cube root, exhaus
     CHECK(invCbrt(8.0f) == 0.5f);
 }
 
-TEST_CASE("fastLog in float is within 2 float roundoffs of ln x, exhaustively over [1/2, 2)", "[Laws]") {
+TEST_CASE("fastLog in float is within 2 float roundoffs of ln x, exhaustively from 1/2 to 2", "[Laws]") {
     // [1/2, 2) holds both reductions (m below and above sqrt 2) and x near 1, where ln x is small and
     // the error is relative to ln x itself; then sampled over 1e-30 .. 1e30 relative to max(1, |ln x|)
     double worstNear = 0, worst = 0;
