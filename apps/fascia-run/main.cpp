@@ -88,7 +88,9 @@ int listComponents() {
     for (auto& [n, e] : reg.entries()) w = std::max(w, n.size());
     for (auto& [n, e] : reg.entries()) {
         std::string plugin = e.plugin.empty() ? "core" : e.plugin;
-        std::printf("%-*s  %-22s %s\n", int(w), n.c_str(), plugin.c_str(), e.description.c_str());
+        // the first line of the description (further lines are details for --describe)
+        const std::string first = e.description.substr(0, e.description.find('\n'));
+        std::printf("%-*s  %-22s %s\n", int(w), n.c_str(), plugin.c_str(), first.c_str());
     }
     return 0;
 }

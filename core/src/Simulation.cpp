@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -77,6 +78,37 @@ void checkOneIntegratorPerNode(const Node& root) {
                                  ": only the first would be called",
                              {"keep one integrator per node; a state in a child node may have its own"});
     });
+}
+
+/// Two constraints on one node and axis, either of which prescribes its motion, fight over it: an
+/// input error at the later one naming the earlier and the first such node. (Two that hold a node at
+/// rest agree, e.g. rollers on two faces that share an edge.)
+void checkConstraintConflicts(const MechanicalGroup& g) {
+    const size_t n = g.state->size();
+    std::vector<int> owner(3 * n, -1);  // per node and axis: the first constraint holding it
+    static const char* kAxis[3] = {"x", "y", "z"};
+    for (size_t c = 0; c < g.constraints.size(); ++c) {
+        const BaseConstraint* k = g.constraints[c];
+        const std::array<bool, 3> axes = k->constrainedAxes();
+        for (int i : k->constrainedNodes()) {
+            if (i < 0 || size_t(i) >= n) continue;  // each constraint checks its own indices
+            for (int a = 0; a < 3; ++a) {
+                if (!axes[size_t(a)]) continue;
+                int& o = owner[3 * size_t(i) + size_t(a)];
+                if (o < 0) {
+                    o = int(c);
+                    continue;
+                }
+                const BaseConstraint* other = g.constraints[size_t(o)];
+                if (other == k || (!k->prescribesMotion() && !other->prescribesMotion())) continue;
+                k->fail("node " + std::to_string(i) + " axis " + kAxis[a] + " is also constrained by " + other->className() +
+                            " '" + other->path() + "'" + (other->loc().empty() ? "" : " (" + other->loc().str() + ")") +
+                            ", and " + (k->prescribesMotion() ? "this one" : "that one") +
+                            " prescribes its motion: a node's axis can follow one constraint only",
+                        {"remove the node from one of them, or let them hold different axes (directions=\"1 1 0\" ...)"});
+            }
+        }
+    }
 }
 
 struct InitOrder {
@@ -162,6 +194,7 @@ void Simulation::init() {
         }
         if (massless && !g.masses.empty())
             g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+        checkConstraintConflicts(g);
     }
 
     // time step
@@ -178,7 +211,10 @@ void Simulation::init() {
                            {"check the moduli (mu, E, bulk modulus) and the density: a modulus near the largest "
                             "double (1e308) overflows, and a zero density has no wave speed",
                             "or give dt in seconds on the root node"});
-        m_dt = crit * m_root->dtSafety.get();
+        // the integrators' own limits (ExplicitEuler's is not central difference's)
+        const IntegratorLimit lim = integratorLimit();
+        if (lim.integrator && !(lim.step > 0)) lim.integrator->fail("dt=\"auto\" finds no stable time step: " + lim.why);
+        m_dt = std::min(crit, lim.step) * m_root->dtSafety.get();
     } else if (ts.value > 0) {
         m_dt = ts.value;
     }
@@ -214,6 +250,23 @@ std::pair<double, const BaseForceField*> Simulation::limitingForceField() const 
     return {crit, limiting};
 }
 
+Simulation::IntegratorLimit Simulation::integratorLimit() const {
+    IntegratorLimit out;
+    for (auto& g : m_groups) {
+        double crit = std::numeric_limits<double>::infinity();
+        for (auto* ff : g.forceFields) crit = std::min(crit, ff->stableTimeStep(*g.state));
+        std::string why;
+        const double s = g.integrator->stableTimeStep(crit, why);
+        if (s < out.step || !(s > 0)) {
+            out.step = s;
+            out.integrator = g.integrator;
+            out.why = why;
+            if (!(s > 0)) break;
+        }
+    }
+    return out;
+}
+
 void Simulation::setDt(double dt) {
     if (!(dt > 0) || !std::isfinite(dt))
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
@@ -226,6 +279,10 @@ void Simulation::setDt(double dt) {
         m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
                      " s of " + limiting->className() + " '" + limiting->path() +
                      "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
+    else if (const IntegratorLimit lim = integratorLimit(); lim.integrator && dt > lim.step)
+        lim.integrator->warn(lim.step > 0 ? "dt = " + shortNumber(dt) + " s is above its stable time step " + shortNumber(lim.step) +
+                                                " s (with its damping): the integration will likely be unstable (dt=\"auto\" picks a stable one)"
+                                          : "no time step is stable: " + lim.why);
     for (Component* c : m_all) c->dtChanged(dt);
 }
 

@@ -14,6 +14,7 @@ public:
     /// The load shape s(t) and its time derivative.
     double shape(double t) const;
     double shapeRate(double t) const;
+    bool prescribesMotion() const override { return true; }
 
     core::Param<Vec3> m_displacement{this, core::ParamSpec("displacement").unit("m").required().help("displacement vector d reached when the shape is 1")};
     core::Param<std::string> m_shape{this, core::ParamSpec("shape").choices({"ramp", "rampHold", "smooth", "step"}).help("load shape s(t)"), "rampHold"};

@@ -312,6 +312,34 @@ TEST_CASE("fascia-run --describe prints a component's parameters", "[fascia-run]
     CHECK_THAT(bad.err, Contains("did you mean 'TestCounter'?"));
 }
 
+TEST_CASE("fascia-run --describe of every law prints its energy in full and --list its one-line summary", "[fascia-run]") {
+    Workspace w;
+    auto list = w.run("--list");
+    REQUIRE(list.code == 0);
+    // the laws: the components of the materials plugin
+    std::vector<std::string> laws;
+    std::istringstream in(list.out);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream words(line);
+        std::string name, plugin;
+        words >> name >> plugin;
+        if (plugin == "fascia.materials") laws.push_back(name);
+    }
+    CHECK(laws.size() >= 11);
+    for (const std::string& law : laws) {
+        CAPTURE(law);
+        auto r = w.run("--describe " + law);
+        CHECK(r.code == 0);
+        // line 1: "<Law> (plugin fascia.materials): summary", line 2: the energy
+        const size_t eol = r.out.find('\n');
+        REQUIRE(eol != std::string::npos);
+        CHECK_THAT(r.out.substr(eol + 1, 4), Contains("W = "));
+        CHECK_THAT(list.out, !Contains("W = "));  // --list keeps to the first line
+    }
+    auto grid = w.run("--describe GridMesh");
+    CHECK_THAT(grid.out, Contains("node numbering:") && Contains("has index i + (nx + 1) (j + (ny + 1) k)"));
+}
+
 TEST_CASE("fascia-run --timers prints the time of each component", "[fascia-run]") {
     Workspace w;
     w.write("good.xml", scene("dt=\"0.01\""));

@@ -99,6 +99,10 @@ public:
     virtual const IndexList& constrainedNodes() const = 0;
     /// Axes it holds (x, y, z): a monitor of its reaction sums only these components.
     virtual std::array<bool, 3> constrainedAxes() const { return {true, true, true}; }
+    /// True when it moves its nodes along a prescribed path (PrescribedDisplacement), false when it
+    /// holds them at rest (FixedConstraint). Two constraints on one node and axis are an input error
+    /// (Simulation::init) when either prescribes motion; two that hold it at rest agree.
+    virtual bool prescribesMotion() const { return false; }
 };
 
 struct MechanicalGroup;
@@ -160,6 +164,12 @@ inline const double* flat(const Positions& p) { return p.empty() ? nullptr : p.d
 class BaseIntegrator : public Component {
 public:
     virtual void step(MechanicalGroup& group, double t, double dt) = 0;
+    /// The largest time step (s) for which it is stable on a group whose force fields give the
+    /// critical step `critical` (the smallest BaseForceField::stableTimeStep, central difference's
+    /// limit 2 / omega_max; infinity when no force field limits the step). dt="auto" is the smallest
+    /// over the groups times dtSafety, and a larger dt is warned. Default: critical. 0 when no step is
+    /// stable (forward Euler without damping); `why` then says why and what to do.
+    virtual double stableTimeStep(double critical, std::string& why) const { return critical; }
 };
 
 /// Reads the scene after each step (exporters, monitors).

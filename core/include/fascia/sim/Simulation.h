@@ -13,6 +13,7 @@
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -80,6 +81,14 @@ public:
 private:
     /// The smallest stable time step and the force field that sets it (null when none does).
     std::pair<double, const BaseForceField*> limitingForceField() const;
+    /// The smallest integrator step (BaseIntegrator::stableTimeStep) over the groups, the integrator
+    /// giving it (null without groups) and, for a step of 0, why none is stable.
+    struct IntegratorLimit {
+        double step = std::numeric_limits<double>::infinity();
+        const BaseIntegrator* integrator = nullptr;
+        std::string why;
+    };
+    IntegratorLimit integratorLimit() const;
     /// The located "no time step" error when dt is not set.
     void requireDt() const;
     std::unique_ptr<Node> m_root;
