@@ -79,19 +79,11 @@ HEMLForceField::~HEMLForceField() = default;
 // ---------------------------------------------------------------------------------------------
 // set-up
 
-const MeshData* HEMLForceField::meshSource() const {
-    if (m_mesh.isSet()) return &m_mesh.get();
-    if (m_tetraIn.isSet() || !node()) return nullptr;
-    if (auto* topo = node()->findInContext<core::BaseTopology>()) return &topo->meshData();
-    return nullptr;
-}
-
 std::vector<core::Component*> HEMLForceField::dependencies() const {
     std::vector<core::Component*> deps;
     if (!node()) return deps;
     if (auto* s = node()->findInContext<core::BaseMechanicalState>()) deps.push_back(s);
-    if (!m_mesh.isSet() && !m_tetraIn.isSet())
-        if (auto* topo = node()->findInContext<core::BaseTopology>()) deps.push_back(topo);
+    elements::addTetMeshDependencies(*this, m_mesh, m_tetrahedra, deps);
     if (!m_stiffness.isSet()) {
         if (auto* m = elements::defaultMaterial(*this, m_material, m_groupMaterials)) deps.push_back(m);
         for (auto* m : elements::listedMaterials(*this, m_groupMaterials)) deps.push_back(m);
@@ -105,27 +97,11 @@ void HEMLForceField::init() {
     HEMLData& d = *m_data;
     d.J0 = m_J0.get();
 
-    // topology
-    if (m_mesh.isSet() && m_tetraIn.isSet())
-        fail(m_tetraIn, "give the tetrahedra either by 'mesh' or by 'tetrahedra', not both");
-    const MeshData* mesh = meshSource();
-    if (m_tetraIn.isSet()) m_tets = m_tetraIn.get();
-    else if (mesh) m_tets = mesh->tetrahedra;
-    else fail("no tetrahedra: set mesh=\"@loader.mesh\" or tetrahedra=\"@loader.tetrahedra\", or put a MeshLoader or GridMesh in the node");
-    if (m_tets.empty()) fail(m_tetraIn.isSet() ? static_cast<const core::BaseParam&>(m_tetraIn) : m_mesh, "the mesh has no tetrahedra");
-
-    // rest positions: the state's, else the mesh's points
-    Positions rest;
-    core::BaseMechanicalState* state = node() ? node()->findInContext<core::BaseMechanicalState>() : nullptr;
-    if (state && state->size() > 0) rest = state->x0();
-    else if (mesh && !mesh->points.empty()) rest = mesh->points;
-    else fail("no rest positions: put a MechanicalObject in the node (or give a mesh with points)");
-    const size_t n = rest.size();
-    for (size_t e = 0; e < m_tets.size(); ++e)
-        for (int a = 0; a < 4; ++a)
-            if (m_tets[e][a] < 0 || size_t(m_tets[e][a]) >= n)
-                fail("tetrahedron " + std::to_string(e) + " has node " + std::to_string(m_tets[e][a]) + " but there are " +
-                     std::to_string(n) + " nodes");
+    // topology and rest positions (the element layer's one rule)
+    elements::TetMesh tm = elements::resolveTetMesh(*this, m_mesh, m_tetrahedra);
+    m_tets = std::move(tm.tets);
+    const MeshData* mesh = tm.mesh;
+    const Positions& rest = tm.rest;
 
     // materials
     d.massSpring = m_stiffness.isSet();
