@@ -269,6 +269,26 @@ TEST_CASE("Reverse Cuthill-McKee numbers a shuffled chain along the chain, the s
     CHECK(reverseCuthillMcKee(n, {{links.data(), links.size() / 2, 2}}) == order);
 }
 
+TEST_CASE("Reverse Cuthill-McKee starts from the end of a strip, not from its least connected node", "[reverseCuthillMcKee]") {
+    // a strip of 2 x 60 nodes cut into triangles, and one node hanging from its middle by a
+    // 2-node element: that node is the least connected, but a numbering from it spreads both ways
+    // (bandwidth 5 or more); from a pseudo-peripheral node (an end of the strip) each BFS level
+    // holds at most 3 nodes, so no element spans more than 3 positions
+    const int L = 60, n = 2 * L + 1, hanging = 2 * L;
+    std::vector<int> tris, links{hanging, L};  // hangs from the top node of column L / 2
+    for (int i = 0; i + 1 < L; ++i) tris.insert(tris.end(), {2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 1, 2 * i + 3, 2 * i + 2});
+    const std::vector<int> order = reverseCuthillMcKee(size_t(n), {{tris.data(), tris.size() / 3, 3}, {links.data(), 1, 2}});
+    REQUIRE(order.size() == size_t(n));
+    std::vector<int> pos(size_t(n), -1);
+    for (size_t i = 0; i < order.size(); ++i) pos[size_t(order[i])] = int(i);
+    CHECK(std::count(pos.begin(), pos.end(), -1) == 0);
+    int bandwidth = 0;
+    for (size_t t = 0; t < tris.size(); t += 3)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) bandwidth = std::max(bandwidth, std::abs(pos[size_t(tris[t + a])] - pos[size_t(tris[t + b])]));
+    CHECK(bandwidth <= 3);
+}
+
 TEST_CASE("ElementAssembly gives the same forces with 1 and 2 threads", "[ElementAssembly]") {
     // 3000 random "elements" over 500 nodes, element forces from a fixed formula
     std::mt19937 rng(7);
