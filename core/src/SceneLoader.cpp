@@ -215,9 +215,9 @@ std::vector<std::string> allComponentPaths(Node& root) {
     return out;
 }
 
-void resolveLinks(Node& root) {
-    root.visit([&](const Node& n) {
-        for (auto& c : n.components()) {
+/// Resolves the links of one object's parameters (a component's, or a node's own, e.g. gravityCurve),
+/// relative to node n.
+void resolveLinksOf(Base* c, const Node& n, Node& root) {
             for (BaseParam* p : c->params()) {
                 if (p->linkText().empty()) continue;
                 const std::string link = p->linkText().substr(1);
@@ -239,7 +239,7 @@ void resolveLinks(Node& root) {
                                     "' from node '" + n.name() + "'",
                             notes);
                 }
-                if (target == c.get()) c->fail(*p, p->name() + " links to its own component");
+                if (target == c) c->fail(*p, p->name() + " links to its own component");
                 p->setLinkTarget(target);
                 if (p->isComponentLink()) {
                     auto* l = static_cast<BaseLink*>(p);
@@ -261,7 +261,12 @@ void resolveLinks(Node& root) {
                                     " (" + src->typeName() + ")");
                 p->bindTo(src);
             }
-        }
+}
+
+void resolveLinks(Node& root) {
+    root.visit([&](const Node& n) {
+        resolveLinksOf(const_cast<Node*>(&n), n, root);
+        for (auto& c : n.components()) resolveLinksOf(c.get(), n, root);
     });
 }
 
