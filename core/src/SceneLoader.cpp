@@ -129,7 +129,8 @@ void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks) {
                                           ": unknown attribute '" + key + "'",
                             notes);
         }
-        if (!allowLinks && !value.empty() && value[0] == '@')
+        // a node's parameters take values, except a link to a component (gravityCurve="@ramp")
+        if (!allowLinks && !value.empty() && value[0] == '@' && !p->isComponentLink())
             throwInputError(spec.loc, obj.className() + ": attribute '" + key + "' cannot be a link");
         p->read(value, spec.loc);
     }
