@@ -132,7 +132,7 @@ TEST_CASE("fascia-run runs a good scene and prints the summary line", "[fascia-r
     CHECK(r.err.empty());  // not a terminal: no progress bar
 }
 
-TEST_CASE("fascia-run --time runs ceil(T/dt) steps", "[fascia-run]") {
+TEST_CASE("fascia-run --time runs ceil(T/dt) steps and ends on T exactly, the last step shortened", "[fascia-run]") {
     Workspace w;
     w.write("good.xml", scene("dt=\"0.01\""));
     auto r = w.run("good.xml --time 0.05");
@@ -143,8 +143,29 @@ TEST_CASE("fascia-run --time runs ceil(T/dt) steps", "[fascia-run]") {
     CHECK(s.steps == 5);
     CHECK(s.simulated == Approx(0.05));
     auto r2 = w.run("good.xml --time 0.041");
+    INFO(r2.out << r2.err);
     REQUIRE(parseSummary(r2.summary(), s));
     CHECK(s.steps == 5);
+    CHECK(s.simulated == 0.041);  // printed to 6 digits: 0.05 before (ceil(T/dt) dt)
+    // endTime the same way
+    w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.0234\""));
+    auto r3 = w.run("end.xml");
+    REQUIRE(parseSummary(r3.summary(), s));
+    CHECK(s.steps == 3);
+    CHECK(s.simulated == 0.0234);
+}
+
+TEST_CASE("fascia-run refuses a dt larger than the end time with a located error", "[fascia-run]") {
+    Workspace w;
+    w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.004\""));
+    auto r = w.run("end.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.firstErrLine(), Contains("end.xml:1: error: Node 'root': dt = 0.01 s is larger than the time to run, 0.004 s "
+                                          "(end time 0.004 s): not even one step fits"));
+    auto r2 = w.run("end.xml --time 0.002 --dt 0.005");
+    CHECK(r2.code == 2);
+    CHECK_THAT(r2.firstErrLine(), Contains("dt = 0.005 s is larger than the time to run, 0.002 s"));
+    CHECK(w.run("end.xml --time 0.01").code == 0);  // one whole step fits
 }
 
 TEST_CASE("fascia-run without --steps or --time runs to the root's endTime, else 100 steps", "[fascia-run]") {
