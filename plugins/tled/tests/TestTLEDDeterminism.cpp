@@ -5,7 +5,7 @@
 // 24 element blocks or more (2048 tetrahedra or 512 hexahedra each), so that 3 threads take them in
 // a varying order: an order-dependent sum of the block buffers would show.
 #include "../../materials/tests/LawReference.h"
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include <catch2/catch.hpp>
 
