@@ -4,7 +4,8 @@
 namespace fascia::meshio {
 
 /// A box split into hexahedra or tetrahedra (5 or 6 per cell), for tests and benchmarks.
-/// Node groups: xmin, xmax, ymin, ymax, zmin, zmax (the six faces).
+/// Node groups: xmin, xmax, ymin, ymax, zmin, zmax (the six faces). Triangles: the boundary,
+/// 4 (nx ny + ny nz + nz nx) triangles turned outwards (each square of a face split in two), group 0.
 class GridMesh : public MeshSource {
 public:
     /// How makeGrid numbers nodes and cells (for --describe).

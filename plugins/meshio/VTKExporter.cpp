@@ -13,7 +13,6 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -214,7 +213,7 @@ void VTKExporter::writeStep(double t, long step) {
     fs::rename(tmp, target, ec);
     if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
     m_written.emplace_back(t, (fs::path(m_base).parent_path() / fileName).string());
-    const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    const double now = core::timerNow();  // steady_clock, or the clock a test injects (setTimerClock)
     if (m_written.size() <= 100 || now - m_lastCollection >= 1.0) {
         writeCollection();
         m_lastCollection = now;

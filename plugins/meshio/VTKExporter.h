@@ -16,6 +16,7 @@ namespace fascia::meshio {
 /// renamed, so a run killed at any moment leaves only complete files (and the .pvd lists only those). The .pvd is
 /// rewritten after every file while the series is short; past 100 files at most once a second of
 /// wall time (a full rewrite per file would grow quadratically), and always at the end of the run.
+/// The time is core::timerNow(): std::chrono::steady_clock unless a test injects a clock.
 class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
@@ -40,7 +41,7 @@ private:
     std::vector<std::pair<double, std::string>> m_written;  ///< (time, file name) in the .pvd
     std::string m_base;
     size_t m_listed = 0;  ///< files listed in the .pvd on disk
-    double m_lastCollection = 0;  ///< wall time (s) of its last rewrite
+    double m_lastCollection = 0;  ///< core::timerNow() (s) at its last rewrite
     long m_lastStep = -1;         ///< the step of the last file written
 };
 

@@ -257,6 +257,59 @@ TEST_CASE("moduli from Young's modulus and Poisson's ratio", "[BaseMaterial]") {
     }
 }
 
+TEST_CASE("the fibre laws take youngModulus and poissonRatio for their isotropic part and respond as with mu and kappa",
+          "[TransverselyIsotropic][Orthotropic]") {
+    // Orthotropic.h and TransverselyIsotropic.h document youngModulus/poissonRatio as the moduli of
+    // the isotropic part, instead of mu and kappa: mu = E/(2(1+nu)), kappa = E/(3(1-2nu))
+    // (resolveMuKappa, Material.cpp). The fibre terms stay as given.
+    const double E = 4500, nu = 0.42, mu = E / (2 * (1 + nu)), K = E / (3 * (1 - 2 * nu));
+    const std::string name = GENERATE("TransverselyIsotropic", "Orthotropic");
+    auto withFibres = [&] {
+        auto m = createBuiltinMaterial(name);
+        m->findParam("eta")->read("2000", {});
+        m->findParam("direction")->read("1 1 0", {});
+        if (name == "Orthotropic") {
+            m->findParam("eta2")->read("700", {});
+            m->findParam("direction2")->read("1 -1 2", {});
+        }
+        return m;
+    };
+    auto setDouble = [](BaseMaterial& m, const char* p, double v) {
+        auto* param = dynamic_cast<core::Param<double>*>(m.findParam(p));
+        REQUIRE(param);
+        param->set(v);
+    };
+    auto byModuli = withFibres(), byYoung = withFibres(), otherNu = withFibres();
+    setDouble(*byModuli, "mu", mu);
+    setDouble(*byModuli, "kappa", K);
+    byYoung->findParam("youngModulus")->read("4500", {});
+    byYoung->findParam("poissonRatio")->read("0.42", {});
+    otherNu->findParam("youngModulus")->read("4500", {});
+    otherNu->findParam("poissonRatio")->read("0.3", {});
+    byModuli->init();
+    byYoung->init();
+    otherNu->init();
+    CHECK(byYoung->shearModulus() == Approx(mu).epsilon(1e-14));
+    CHECK(byYoung->bulkModulus() == Approx(K).epsilon(1e-14));
+    CHECK(byYoung->waveSpeed(1000) == Approx(byModuli->waveSpeed(1000)).epsilon(1e-14));
+    for (int k = 0; k < 4; ++k) {
+        INFO("deformation " << k);
+        const auto in = conf::invariantsOf(testF(k), dirOf(*byYoung, 0, Vec3::Zero()), dirOf(*byYoung, 1, Vec3(1, 0, 0)));
+        const Response a = conf::evaluateOne(*byYoung, in, 0.4), b = conf::evaluateOne(*byModuli, in, 0.4);
+        CHECK(a.W == Approx(b.W).epsilon(1e-13));
+        CHECK(a.dI1 == Approx(b.dI1).epsilon(1e-13));
+        CHECK(a.dI4 == Approx(b.dI4).epsilon(1e-13));
+        CHECK(a.dI6 == Approx(b.dI6).epsilon(1e-13));
+        CHECK(a.dJiso == Approx(b.dJiso).epsilon(1e-13));
+        CHECK(a.dJvol == Approx(b.dJvol).epsilon(1e-13));
+        CHECK(std::abs(a.W) > 10);  // a deformed state with energy (Pa), not the rest state
+        // another nu gives another response: the comparison above sees the moduli
+        const Response c = conf::evaluateOne(*otherNu, in, 0.4);
+        CHECK(std::abs(c.dJvol - b.dJvol) > 1e-3 * std::abs(b.dJvol));
+        CHECK(std::abs(c.dI1 - b.dI1) > 1e-3 * std::abs(b.dI1));
+    }
+}
+
 TEST_CASE("moduli given both ways, neither way or half way are located errors", "[BaseMaterial]") {
     SECTION("both") {
         NeoHookean m;

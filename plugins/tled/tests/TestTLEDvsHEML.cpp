@@ -1,6 +1,6 @@
 // TLED and HEML are two discretisations of the same tetrahedral P1 finite-element energy: for the
 // same law, mesh and positions their nodal forces must agree to round-off (docs/design.md, principle 3).
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include "fascia/heml/HEMLForceField.h"
 

@@ -1,7 +1,7 @@
 /// Loading plugins: the good one registers its components; every broken one is a clear error that
 /// leaves the registry as it was. PluginManager and Registry are process-wide: each test loads
 /// what it needs and checks only what no other test changes.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/plugin/Plugin.h"
 #include "fascia/plugin/Registry.h"

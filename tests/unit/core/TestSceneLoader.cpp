@@ -1,5 +1,5 @@
 /// Scenes from XML: every kind of input error is located (file and line) with a clear message.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/plugin/Registry.h"
 
