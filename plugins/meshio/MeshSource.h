@@ -13,7 +13,7 @@ public:
     core::Param<Positions> m_positions{this, core::ParamSpec("positions").output().unit("m").help("node positions")};
     core::Param<Tetrahedra> m_tetrahedra{this, core::ParamSpec("tetrahedra").output().help("tetrahedra (4 node indices each)")};
     core::Param<Hexahedra> m_hexahedra{this, core::ParamSpec("hexahedra").output().help("hexahedra (8 node indices each, VTK order)")};
-    core::Param<Triangles> m_triangles{this, core::ParamSpec("triangles").output().help("boundary triangles")};
+    core::Param<Triangles> m_triangles{this, core::ParamSpec("triangles").output().help("boundary triangles: a GridMesh's, turned outwards; a file's triangles as the file has them")};
 
 protected:
     /// Publishes a mesh to the outputs.

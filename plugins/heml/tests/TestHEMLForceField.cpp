@@ -214,46 +214,6 @@ TEST_CASE("per group materials from a mesh's group tags or names", "[HEMLForceFi
     CHECK(err < 1e-10 * maxNorm(ref));
 }
 
-TEST_CASE("per element fibre directions from a mesh cell array", "[HEMLForceField]") {
-    MeshData mesh = cubeMesh(2, 2, 2);
-    std::vector<double> dirs;
-    for (size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
-        const double a = 0.3 * double(e);
-        dirs.insert(dirs.end(), {2 * std::cos(a), 2 * std::sin(a), 0.5});  // not unit: normalised by the field
-    }
-    mesh.cellArrays["fibres"] = dirs;
-    Scene s(mesh);
-    addMaterial(s.root, "TransverselyIsotropic", "mat");
-    s.ff->m_fibreArray.set("fibres");
-    s.init();
-    s.state->x() = deformed(mesh.points, 0.002);
-    const Positions f = s.forces();
-    // reference: one element at a time with its own direction
-    Positions ref(f.size(), Vec3::Zero());
-    for (size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
-        MeshData one = mesh;
-        one.tetrahedra = {mesh.tetrahedra[e]};
-        one.tetrahedronGroup = {1};
-        one.cellArrays.clear();
-        core::Node n("one");
-        auto& st = n.add<TestState>("mo");
-        st.setRest(mesh.points);
-        auto& m = static_cast<materials::TransverselyIsotropic&>(addMaterial(n, "TransverselyIsotropic", "m"));
-        m.m_dir.set(Vec3(dirs[3 * e], dirs[3 * e + 1], dirs[3 * e + 2]));
-        auto& ff = n.add<heml::HEMLForceField>("ff");
-        ff.m_mesh.set(one);
-        st.init();
-        m.init();
-        ff.init();
-        st.x() = s.state->x();
-        ff.addForce(st, ref, 0);
-    }
-    double err = 0;
-    for (size_t i = 0; i < f.size(); ++i) err = std::max(err, (f[i] - ref[i]).norm());
-    CHECK(err < 1e-12 * maxNorm(ref));
-    CHECK(conf::checkForceField(*s.ff, *s.state).gradientError < 1e-7);
-}
-
 TEST_CASE("mass-spring mode gives the classical spring forces (HEML eq. (36) = eq. (41))", "[HEMLForceField]") {
     const MeshData mesh = cubeMesh(3, 2, 2);
     Scene s(mesh);
@@ -477,7 +437,7 @@ TEST_CASE("set-up errors are located and say what to do", "[HEMLForceField]") {
     SECTION("mesh and tetrahedra both") {
         Scene s(mesh);
         addMaterial(s.root, "NeoHookean", "mat");
-        s.ff->m_tetraIn.set(mesh.tetrahedra);
+        s.ff->m_tetrahedra.set(mesh.tetrahedra);
         CHECK_THROWS_WITH(s.init(), Catch::Contains("not both"));
     }
     SECTION("a group material that is not a material") {

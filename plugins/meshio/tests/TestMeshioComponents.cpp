@@ -190,25 +190,55 @@ TEST_CASE("VTKExporter files open in VTK's own reader and the values round-trip"
     }
 }
 
-TEST_CASE("VTKExporter lists every file in the .pvd at the end of a long series", "[VTKExporter]") {
-    // past 100 files the .pvd is rewritten at most once a second, and completed when the run ends
+namespace {
+double g_testClock = 0;  ///< seconds, the clock VTKExporter reads in the .pvd test
+double testClock() { return g_testClock; }
+struct InjectedClock {
+    InjectedClock() { fascia::core::setTimerClock(&testClock); }
+    ~InjectedClock() { fascia::core::setTimerClock(nullptr); }
+};
+} // namespace
+
+TEST_CASE("VTKExporter rewrites the .pvd after each of the first 100 files, then once a second of its clock, and completes it "
+          "at the end",
+          "[VTKExporter]") {
+    // the rule (VTKExporter.h): after each file while there are at most 100, past that only when a
+    // second has passed since the last rewrite, and at cleanup. The clock is injected, so the
+    // expected rewrites are exact: the clock stands still for the first 110 files, then moves 0.25 s
+    // a file (exact in binary), so that the .pvd is rewritten at every 4th file after the 110th.
+    InjectedClock injected;
+    g_testClock = 1000.0;
     auto dir = freshDir("long");
     auto sim = Simulation::fromString(cube("tetrahedra6", "  <FixedConstraint group=\"zmin\"/>\n  <VTKExporter name=\"out\"/>\n",
                                            "2 2 2"),
                                       "scene.xml", ".", {dir.string(), 0});
-    sim->run(150);
     auto count = [&] {
         const std::string pvd = slurp(dir / "out.pvd");
         size_t n = 0;
         for (size_t p = pvd.find("<DataSet"); p != std::string::npos; p = pvd.find("<DataSet", p + 1)) ++n;
         return n;
     };
-    const size_t during = count();
-    CHECK(during >= 100);
-    CHECK(during <= 151);
+    CHECK(!fs::exists(dir / "out.pvd"));  // the initial state is written at the first step, with the first one
+    size_t files = 1, listed = 1;
+    for (int step = 1; step <= 130; ++step) {
+        if (files >= 110) g_testClock += 0.25;
+        sim->step();
+        ++files;
+        if (files <= 100) listed = files;  // rewritten after every file
+        else if (files > 110 && (files - 110) % 4 == 0) listed = files;  // a second after the last rewrite
+        INFO("file " << files << ", clock " << g_testClock);
+        REQUIRE(count() == listed);
+    }
+    CHECK(listed == 130);  // rewrites at 114, 118 ... 130: file 131 waits
+    // a jump of the clock: the next file rewrites it at once, the one after does not
+    g_testClock += 100;
+    sim->step();
+    CHECK(count() == 132);
+    sim->step();
+    CHECK(count() == 132);
     sim->finish();
-    CHECK(count() == 151);
-    CHECK_THAT(slurp(dir / "out.pvd"), Contains("file=\"out_000150.vtu\""));
+    CHECK(count() == 133);
+    CHECK_THAT(slurp(dir / "out.pvd"), Contains("file=\"out_000132.vtu\""));
 }
 
 TEST_CASE("a run killed mid-way leaves only complete exporter files", "[VTKExporter]") {

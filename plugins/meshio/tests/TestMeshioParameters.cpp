@@ -14,7 +14,11 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -152,9 +156,10 @@ TEST_CASE("Monitor records positions, velocities, reactions and element quantiti
         sim->step();
         if (n % 3 == 0) record();
     }
+    record();  // the final state (step 31), which finish() records whatever every
     sim->finish();
     const auto rows = lines(slurp(dir / "mon.csv"));
-    REQUIRE(rows.size() == 1 + 11);  // header, steps 0 3 ... 30
+    REQUIRE(rows.size() == 1 + 12);  // header, steps 0 3 ... 30, 31
     CHECK(rows[0] == "time [s],x5_x [m],x5_y [m],x5_z [m],v5_x [m/s],v5_y [m/s],v5_z [m/s],"
                      "x11_x [m],x11_y [m],x11_z [m],v11_x [m/s],v11_y [m/s],v11_z [m/s],"
                      "reaction_x [N],reaction_y [N],reaction_z [N],J[3] [-],J[40] [-]");
@@ -169,6 +174,252 @@ TEST_CASE("Monitor records positions, velocities, reactions and element quantiti
     // the body has moved and deformed: the checks above compare non-trivial values
     CHECK(std::abs(expected.back()[15]) > 1e-3);      // the support carries the elastic forces
     CHECK(std::abs(expected.back()[16] - 1) > 1e-7);  // J of element 3 is no longer 1 (far above the 1e-10 above)
+}
+
+TEST_CASE("Monitor records the element quantities of the force field it links to, not of the first one",
+          "[Monitor]") {
+    auto dir = freshDir("monitor-ff");
+    // two HEML force fields on one state, b ten times stiffer than a at the same Poisson's ratio:
+    // at any state b's von Mises stress is exactly 10 times a's (the neo-Hookean stress is linear in
+    // mu and kappa at fixed nu)
+    const std::string xml =
+        "<Node name=\"root\" dt=\"0.0005\" gravity=\"0 0 -9.81\">\n"
+        "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.2 0.1 0.1\" resolution=\"3 2 2\" element=\"tetrahedra6\"/>\n"
+        "  <MechanicalObject name=\"state\"/>\n"
+        "  <LumpedMass density=\"1000\"/>\n"
+        "  <NeoHookean name=\"soft\" youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n"
+        "  <NeoHookean name=\"stiff\" youngModulus=\"30000\" poissonRatio=\"0.45\"/>\n"
+        "  <HEMLForceField name=\"a\" material=\"@soft\"/>\n"
+        "  <HEMLForceField name=\"b\" material=\"@stiff\"/>\n"
+        "  <SemiImplicitEuler/>\n"
+        "  <FixedConstraint name=\"base\" group=\"xmin\"/>\n"
+        "  <Monitor name=\"ofB\" forceField=\"@b\" elements=\"3 40\" elementFields=\"vonMises\" displacements=\"false\"/>\n"
+        "  <Monitor name=\"ofA\" forceField=\"@a\" elements=\"3 40\" elementFields=\"vonMises\" displacements=\"false\"/>\n"
+        "  <Monitor name=\"first\" elements=\"3 40\" elementFields=\"vonMises\" displacements=\"false\"/>\n"
+        "</Node>\n";
+    auto sim = Simulation::fromString(xml, "scene.xml", ".", {dir.string(), 0});
+    sim->run(20);
+    auto& st = sim->state("state");
+    auto vonMises = [&](const char* ff) {
+        std::vector<fascia::core::CellField> fields;
+        dynamic_cast<fascia::core::BaseForceField*>(sim->find(ff))->cellData(st, fields);
+        for (auto& f : fields)
+            if (f.name == "vonMises") return f.values;
+        FAIL("no vonMises from " << ff);
+        return std::vector<double>{};
+    };
+    const auto a = vonMises("a"), b = vonMises("b");
+    sim->finish();
+    auto lastRow = [&](const char* file) {
+        const auto rows = lines(slurp(dir / file));
+        REQUIRE(rows.size() == 1 + 21);
+        CHECK(rows[0] == "time [s],vonMises[3] [Pa],vonMises[40] [Pa]");
+        const auto cells = split(rows.back());
+        REQUIRE(cells.size() == 3);
+        return std::vector<double>{std::stod(cells[1]), std::stod(cells[2])};
+    };
+    const auto ofB = lastRow("ofB.csv"), ofA = lastRow("ofA.csv"), first = lastRow("first.csv");
+    for (int k = 0; k < 2; ++k) {
+        const size_t e = k == 0 ? 3 : 40;
+        INFO("element " << e);
+        REQUIRE(a[e] > 1e-3);  // the body is stressed
+        CHECK(b[e] == Approx(10 * a[e]).epsilon(1e-10));
+        CHECK(ofB[size_t(k)] == Approx(b[e]).epsilon(1e-10));
+        CHECK(ofA[size_t(k)] == Approx(a[e]).epsilon(1e-10));
+        CHECK(first[size_t(k)] == Approx(a[e]).epsilon(1e-10));  // the default: the first element force field
+    }
+}
+
+namespace {
+
+/// One node of `twinScenes`: a state, a material and the force fields in `ffs`.
+std::string mechanicsNode(const std::string& name, const std::string& state, const std::string& ffs) {
+    return "  <Node name=\"" + name + "\">\n    " + state + "\n"
+           "    <NeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n    " + ffs + "\n  </Node>\n";
+}
+
+/// The forces of every force field in `ffs` at the same deformed state, 3 numbers per node.
+Positions forcesAt(Simulation& sim, const std::string& state, const std::vector<std::string>& ffs, const std::string& ff) {
+    auto& st = sim.state(state);
+    const Mat3 F = (Mat3() << 1.05, 0.02, -0.01, 0.0, 0.97, 0.03, 0.01, -0.02, 1.02).finished();
+    for (size_t i = 0; i < st.size(); ++i) st.x()[i] = F * st.x0()[i] + 0.001 * Vec3(std::sin(3.0 * i), std::cos(5.0 * i), 0);
+    Positions f(st.size(), Vec3::Zero());
+    REQUIRE(std::find(ffs.begin(), ffs.end(), ff) != ffs.end());
+    auto* field = dynamic_cast<fascia::core::BaseForceField*>(sim.find(ff));
+    REQUIRE(field);
+    field->addForce(st, f, 0);
+    return f;
+}
+
+double maxDiff(const Positions& a, const Positions& b) {
+    REQUIRE(a.size() == b.size());
+    double d = 0;
+    for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+    return d;
+}
+
+double maxNorm(const Positions& a) {
+    double d = 0;
+    for (const auto& v : a) d = std::max(d, v.norm());
+    return d;
+}
+
+} // namespace
+
+TEST_CASE("MeshLoader's positions, tetrahedra, hexahedra and mesh outputs linked into the state and the force fields give "
+          "the forces of the implicit mesh source",
+          "[MeshLoader]") {
+    const std::string dir = std::string(FASCIA_SOURCE_DIR);
+    const std::string organ = dir + "/scenes/meshes/organ_2428.msh", hex = dir + "/plugins/meshio/tests/data/hex2.msh";
+    // "src" holds the loaders and nothing else, and no mesh source is in the context of "linked":
+    // what its components get comes through the links only (without them their init fails)
+    const std::string xml =
+        "<Node name=\"root\" dt=\"1e-5\">\n"
+        "  <Node name=\"src\">\n"
+        "    <MeshLoader name=\"loader\" filename=\"" + organ + "\"/>\n"
+        "    <MeshLoader name=\"hexLoader\" filename=\"" + hex + "\" scale=\"0.1\"/>\n"
+        "  </Node>\n" +
+        mechanicsNode("implicit", "<MeshLoader name=\"own\" filename=\"" + organ + "\"/>\n    <MechanicalObject name=\"si\"/>",
+                      "<HEMLForceField name=\"hi\"/>\n    <TLEDForceField name=\"ti\"/>") +
+        mechanicsNode("linked", "<MechanicalObject name=\"sl\" position=\"@/root/src/loader.positions\"/>",
+                      "<HEMLForceField name=\"hTets\" tetrahedra=\"@/root/src/loader.tetrahedra\"/>\n"
+                      "    <HEMLForceField name=\"hMesh\" mesh=\"@/root/src/loader.mesh\"/>\n"
+                      "    <TLEDForceField name=\"tTets\" tetrahedra=\"@/root/src/loader.tetrahedra\"/>\n"
+                      "    <TLEDForceField name=\"tMesh\" mesh=\"@/root/src/loader.mesh\"/>") +
+        mechanicsNode("hexImplicit", "<MeshLoader name=\"ownHex\" filename=\"" + hex + "\" scale=\"0.1\"/>\n    <MechanicalObject name=\"hi8\"/>",
+                      "<TLEDForceField name=\"th\"/>") +
+        mechanicsNode("hexLinked", "<MechanicalObject name=\"hl8\" position=\"@/root/src/hexLoader.positions\"/>",
+                      "<TLEDForceField name=\"thLinked\" hexahedra=\"@/root/src/hexLoader.hexahedra\"/>") +
+        "</Node>\n";
+    CaptureCerr quiet;  // no integrator and no mass: "it will not move" warnings; the forces are asked for directly
+    auto sim = Simulation::fromString(xml, "scene.xml");
+    auto& si = sim->state("si");
+    auto& sl = sim->state("sl");
+    REQUIRE(sl.size() == 621);
+    for (size_t i = 0; i < si.size(); ++i) REQUIRE(sl.x0()[i] == si.x0()[i]);
+    const std::vector<std::string> tets{"hi", "ti", "hTets", "hMesh", "tTets", "tMesh"};
+    const Positions hemlRef = forcesAt(*sim, "si", tets, "hi"), tledRef = forcesAt(*sim, "si", tets, "ti");
+    REQUIRE(maxNorm(hemlRef) > 1e-6);
+    for (const char* ff : {"hTets", "hMesh"}) {
+        INFO(ff);
+        CHECK(maxDiff(forcesAt(*sim, "sl", tets, ff), hemlRef) <= 1e-12 * maxNorm(hemlRef));
+    }
+    for (const char* ff : {"tTets", "tMesh"}) {
+        INFO(ff);
+        CHECK(maxDiff(forcesAt(*sim, "sl", tets, ff), tledRef) <= 1e-12 * maxNorm(tledRef));
+    }
+    auto& hexState = sim->state("hl8");
+    REQUIRE(hexState.size() == 12);
+    const std::vector<std::string> hexes{"th", "thLinked"};
+    const Positions hexRef = forcesAt(*sim, "hi8", hexes, "th");
+    REQUIRE(maxNorm(hexRef) > 1e-9);
+    CHECK(dynamic_cast<fascia::core::BaseForceField*>(sim->find("thLinked"))->elementCount() == 2);
+    CHECK(maxDiff(forcesAt(*sim, "hl8", hexes, "thLinked"), hexRef) <= 1e-12 * maxNorm(hexRef));
+}
+
+namespace {
+
+/// The triangles output of mesh source `name`, read by name as a linking component would.
+fascia::Triangles trianglesOf(Simulation& sim, const std::string& name) {
+    auto* c = sim.find(name);
+    REQUIRE(c);
+    auto* p = dynamic_cast<fascia::core::Param<fascia::Triangles>*>(c->findParam("triangles"));
+    REQUIRE(p);
+    return p->get();
+}
+
+/// sum of the area-weighted normals (zero for a closed surface) and the enclosed volume by the
+/// divergence theorem, V = sum over triangles of x0 . (n A) / 3 (positive when turned outwards)
+std::pair<Vec3, double> surfaceSums(const Positions& x, const fascia::Triangles& tris) {
+    Vec3 n = Vec3::Zero();
+    double v = 0;
+    for (const auto& t : tris) {
+        const Vec3 a = 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+        n += a;
+        v += x[t[0]].dot(a) / 3;
+    }
+    return {n, v};
+}
+
+double tetVolume(const Positions& x, const std::array<int, 4>& t) {
+    return (x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])) / 6;
+}
+
+} // namespace
+
+TEST_CASE("GridMesh's triangles output is its boundary, two triangles per face square, turned outwards", "[GridMesh]") {
+    const std::string element = GENERATE(as<std::string>{}, "tetrahedra6", "tetrahedra5", "hexahedra");
+    CAPTURE(element);
+    auto sim = Simulation::fromString("<Node name=\"root\">\n"
+                                      "  <GridMesh name=\"grid\" min=\"-0.1 0 0.2\" max=\"0.3 0.1 0.5\" resolution=\"4 2 3\" element=\"" +
+                                      element + "\"/>\n</Node>\n");
+    const auto tris = trianglesOf(*sim, "grid");
+    const auto& mesh = dynamic_cast<fascia::core::BaseTopology*>(sim->find("grid"))->meshData();
+    CHECK(tris.size() == size_t(4 * (4 * 2 + 2 * 3 + 3 * 4)));
+    const Vec3 lo(-0.1, 0, 0.2), hi(0.3, 0.1, 0.5), centre = (lo + hi) / 2;
+    std::set<std::array<int, 3>> seen;
+    for (const auto& t : tris) {
+        std::array<int, 3> key = t;
+        std::sort(key.begin(), key.end());
+        CHECK(seen.insert(key).second);  // no triangle twice
+        const Vec3 a = mesh.points[t[0]], b = mesh.points[t[1]], c = mesh.points[t[2]];
+        const Vec3 n = (b - a).cross(c - a);
+        REQUIRE(n.norm() > 0);
+        // on one face of the box (one coordinate equal to a bound at its three corners), with the
+        // normal along that face's outward axis
+        int onFace = 0;
+        for (int ax = 0; ax < 3; ++ax)
+            for (double bound : {lo[ax], hi[ax]})
+                if (a[ax] == bound && b[ax] == bound && c[ax] == bound) {
+                    ++onFace;
+                    CHECK(std::abs(n[ax]) == Approx(n.norm()).epsilon(1e-12));
+                    CHECK(n[ax] * (bound - centre[ax]) > 0);
+                }
+        CHECK(onFace == 1);
+    }
+    const auto [nsum, volume] = surfaceSums(mesh.points, tris);
+    CHECK(nsum.norm() < 1e-15);
+    CHECK(volume == Approx(0.4 * 0.1 * 0.3).epsilon(1e-12));
+    CHECK(mesh.triangleGroup == std::vector<int>(tris.size(), 0));
+}
+
+TEST_CASE("MeshLoader's triangles output is the Gmsh file's boundary, turned outwards", "[MeshLoader]") {
+    const std::string organ = std::string(FASCIA_SOURCE_DIR) + "/scenes/meshes/organ_2428.msh";
+    auto sim = Simulation::fromString("<Node name=\"root\">\n  <MeshLoader name=\"loader\" filename=\"" + organ +
+                                      "\" translation=\"0.5 -0.2 0.1\"/>\n</Node>\n");
+    const auto tris = trianglesOf(*sim, "loader");
+    const auto& mesh = dynamic_cast<fascia::core::BaseTopology*>(sim->find("loader"))->meshData();
+    // physical surface 2 holds the 834 boundary triangles (scenes/meshes/README.md, and the file)
+    REQUIRE(tris.size() == 834);
+    // each triangle is the face of exactly one tetrahedron and turned away from its fourth node
+    std::map<std::array<int, 3>, std::vector<int>> opposite;  // sorted face -> the fourth node of each tetrahedron
+    double tetSum = 0;
+    for (const auto& t : mesh.tetrahedra) {
+        tetSum += tetVolume(mesh.points, t);
+        for (int k = 0; k < 4; ++k) {
+            std::array<int, 3> f{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
+            std::sort(f.begin(), f.end());
+            opposite[f].push_back(t[k]);
+        }
+    }
+    for (const auto& t : tris) {
+        std::array<int, 3> key = t;
+        std::sort(key.begin(), key.end());
+        const auto it = opposite.find(key);
+        REQUIRE(it != opposite.end());
+        CHECK(it->second.size() == 1);
+        const Vec3 n = (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]);
+        CHECK(n.dot(mesh.points[t[0]] - mesh.points[it->second[0]]) > 0);
+    }
+    size_t boundaryFaces = 0;
+    for (const auto& [f, o] : opposite) boundaryFaces += o.size() == 1;
+    CHECK(boundaryFaces == tris.size());  // the whole boundary
+    // closed and outward: the normals sum to zero and the divergence theorem gives the tetrahedra's
+    // volume (about 1.43e-3 m^3, scenes/meshes/README.md), translated or not
+    const auto [nsum, volume] = surfaceSums(mesh.points, tris);
+    CHECK(nsum.norm() < 1e-15);
+    CHECK(tetSum == Approx(1.43e-3).epsilon(0.01));
+    CHECK(volume == Approx(tetSum).epsilon(1e-12));
 }
 
 TEST_CASE("Monitor takes a node group, a file name and another node's state", "[Monitor]") {

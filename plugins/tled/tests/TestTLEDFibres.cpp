@@ -7,7 +7,7 @@
 // element in the test, and f_a = -V F S dN_a/dX. Hexahedra are the regular grid's cubes with
 // hourglass control off, where the uniform-strain derivatives are the centre-point ones.
 #include "../../materials/tests/LawReference.h"
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include <catch2/catch.hpp>
 

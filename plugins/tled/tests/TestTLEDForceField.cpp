@@ -1,7 +1,7 @@
 // TLEDForceField: conformance on every material and element type, the hexahedron patch and
 // hourglass tests, stresses and cell data, time steps, groups and fibre arrays, input errors, and
 // bitwise determinism across thread counts.
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include "fascia/base/Error.h"
 

@@ -171,9 +171,12 @@ TEST_CASE("TLED section 6.2: a fibre at 45 degrees in the lateral plane reduces 
 TEST_CASE("TLED hexahedra in bending: hourglass control suppresses the zero-energy modes",
           "[TLEDForceField][scene][verification]") {
     // a cantilever 0.2 x 0.02 x 0.02 m, two one-point hexahedra through its depth, a tip load of 1 mN:
-    // Euler-Bernoulli gives F L^3 / (3 E I) = 2.0 mm. Without control the hourglass modes of the
-    // reduced integration carry the load almost freely; with the Flanagan-Belytschko control the beam
-    // bends like a beam (coarse mesh: somewhat stiff).
+    // Euler-Bernoulli gives F L^3 / (3 E I) = 2.0 mm, Timoshenko adds F L / (5/6 G A) = 0.0156 mm.
+    // Without control the hourglass modes of the reduced integration carry the load almost freely;
+    // with the Flanagan-Belytschko control the beam bends like a beam, too stiff on this coarse mesh
+    // by a known amount: this is the 10 x 2 x 2 mesh of the convergence study in
+    // tests/verification/TestCantilever.cpp, which measured 1.379 mm, 31.6 % below Timoshenko, and
+    // whose finer meshes converge to Timoshenko. The controlled bound is that study's [30 %, 33 %].
     auto tip = [](const std::string& hourglass) {
         auto sim = core::Simulation::fromString(R"(<Node name="root" dt="auto" dtSafety="0.5">
   <GridMesh min="0 0 0" max="0.2 0.02 0.02" resolution="10 2 2" element="hexahedra"/>
@@ -197,11 +200,13 @@ TEST_CASE("TLED hexahedra in bending: hourglass control suppresses the zero-ener
         return std::make_pair(-w / n, hi - lo);
     };
     const double beam = 1e-3 * 0.2 * 0.2 * 0.2 / (3 * 1e5 * std::pow(0.02, 4) / 12);
+    const double timoshenko = beam + 1e-3 * 0.2 / (5.0 / 6.0 * 1e5 / (2 * 1.3) * 0.02 * 0.02);
     const auto [controlled, controlledSpread] = tip("0.075");
     const auto [free, freeSpread] = tip("0");
-    CAPTURE(beam, controlled, controlledSpread, free, freeSpread);
-    CHECK(controlled > 0.5 * beam);
-    CHECK(controlled < 1.1 * beam);
+    const double controlledError = 1 - controlled / timoshenko;
+    CAPTURE(beam, timoshenko, controlled, controlledError, controlledSpread, free, freeSpread);
+    CHECK(controlledError > 0.30);  // stiff by the coarse-mesh error of TestCantilever.cpp,
+    CHECK(controlledError < 0.33);  // and no more
     CHECK(controlledSpread < 0.05 * controlled);  // the tip face moves as a whole
     CHECK(free > 2 * beam);                       // without control: far too soft,
     CHECK(freeSpread > 2 * free);                 // and the tip face zigzags (hourglass pattern)

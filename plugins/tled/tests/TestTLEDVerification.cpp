@@ -7,7 +7,7 @@
 //   own material-point computation.
 // Reference rows copied from the project's independent tables (tests/reference/tled_pure_shear.txt
 // and tests/reference/relaxation.txt) cross-check the closed forms; tests never read those files.
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // TLED and HEML are two discretisations of the same tetrahedral P1 finite-element energy: for the
 // same law, mesh and positions their nodal forces must agree to round-off (docs/design.md, principle 3).
-#include "TledTestUtil.h"
+#include "TLEDTestSupport.h"
 
 #include "fascia/heml/HEMLForceField.h"
 
@@ -22,7 +22,7 @@ TEST_CASE("TLEDForceField and HEMLForceField give the same nodal forces on the s
     b.forceField(t, {}).init();
     auto& heml = b.root.add<fascia::heml::HEMLForceField>("heml");
     heml.setClassName("HEMLForceField");
-    heml.m_tetraIn.set(t);
+    heml.m_tetrahedra.set(t);
     heml.init();
 
     // a large deformation, with some elements compressed below J0 = 0.4 (the HEML section 4.4 branch)

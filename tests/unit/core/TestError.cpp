@@ -1,4 +1,4 @@
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 using namespace fascia::core;
 using namespace fascia::testing;

@@ -2,7 +2,7 @@
 /// root or integrator, outputs that leave the output folder, many unnamed components. Each gets a
 /// located error (or loads in linear time) instead of blocking, growing without bound or being
 /// silently dropped.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/base/InputFile.h"
 

@@ -1,5 +1,5 @@
 /// The scene graph: paths, lookups in the context, link path resolution.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/scene/Node.h"
 

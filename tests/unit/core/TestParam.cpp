@@ -1,5 +1,5 @@
 /// Parameters: parsing of every type, ranges, choices, defaults, required, counts, outputs, paths.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/base/Component.h"
 

@@ -1,6 +1,6 @@
 /// Two plugins registering one component name: an error naming both, and the second plugin's
 /// registrations rolled back. In its own executable: it leaves the process with a refused plugin.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/plugin/Registry.h"
 

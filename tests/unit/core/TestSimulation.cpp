@@ -1,6 +1,6 @@
 /// The simulation loop: time step, step count and time, group assembly, NaN detection, timers,
 /// init order along links.
-#include "TestSupport.h"
+#include "CoreTestSupport.h"
 
 #include "fascia/plugin/Registry.h"
 
