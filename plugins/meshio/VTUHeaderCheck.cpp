@@ -37,6 +37,8 @@ public:
                 m_compressed = !attribute(tag, "compressor").empty();
                 m_bigEndian = attribute(tag, "byte_order") == "BigEndian";
             } else if (name == "Piece") {
+                pieceEnd();
+                m_pieceAt = p;
                 m_points = count(tag, "NumberOfPoints", p);
                 m_cells = count(tag, "NumberOfCells", p);
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
@@ -46,6 +48,7 @@ public:
                 dataArray(tag, context, p, e + 1);
             }
         }
+        pieceEnd();
     }
 
 private:
@@ -78,6 +81,15 @@ private:
         if (type == "Int32" || type == "UInt32" || type == "Float32") return 4;
         if (type == "Int64" || type == "UInt64" || type == "Float64") return 8;
         return 0;
+    }
+    /// A Piece with points needs a Points array, one with cells a cell types array.
+    void pieceEnd() {
+        if (m_points > 0 && !m_havePoints)
+            failAt(m_pieceAt, "the Piece announces " + std::to_string(m_points) + " points but has no Points array: the file is incomplete or truncated");
+        if (m_cells > 0 && !m_haveTypes)
+            failAt(m_pieceAt, "the Piece announces " + std::to_string(m_cells) + " cells but has no cell types array: the file is incomplete or truncated");
+        m_points = m_cells = 0;
+        m_havePoints = m_haveTypes = false;
     }
     void appendedStart(size_t tagAt) {
         const size_t u = m_t.find('_', tagAt);
@@ -176,10 +188,12 @@ private:
         if (context == "Points" || context == "PointData") tuples = (long long)m_points;
         else if (context == "CellData" || (context == "Cells" && (name == "types" || name == "offsets")))
             tuples = (long long)m_cells;
+        if (context == "Points") m_havePoints = true;
+        if (context == "Cells" && name == "types") m_haveTypes = true;
         const int tb = typeBytes(attribute(tag, "type"));
         unsigned long long values = 0;
         bool known = true;
-        if (format == "ascii") {
+        if (format == "ascii" && tb > 0) {  // numbers only: a string array has its own layout
             const size_t close = m_t.find('<', bodyStart);
             values = asciiValues(bodyStart, close == std::string::npos ? m_t.size() : close);
         } else if (format == "binary" && tb > 0) {
@@ -219,7 +233,8 @@ private:
     const std::string& m_path;
     bool m_header64 = false, m_compressed = false, m_bigEndian = false, m_appendedBase64 = false;
     unsigned long long m_points = 0, m_cells = 0;
-    size_t m_appended = 0;
+    size_t m_appended = 0, m_pieceAt = 0;
+    bool m_havePoints = false, m_haveTypes = false;
 };
 
 } // namespace

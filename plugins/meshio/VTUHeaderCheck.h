@@ -11,7 +11,8 @@ namespace fascia::meshio::detail {
 /// Points, cell types, offsets, point or cell data arrays do not have (one tuple each, so a cell
 /// type array shorter than the cells is an error), a binary or appended data header (UInt32 or
 /// UInt64, compressed blocks included) whose sizes pass the end of the file or of its data, or
-/// compressed blocks that would expand more than any of VTK's compressors can.
+/// compressed blocks that would expand more than any of VTK's compressors can; a Piece with points
+/// but no Points array, or with cells but no cell types array.
 void checkVtuHeaders(const std::string& path);
 
 } // namespace fascia::meshio::detail
