@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -182,10 +181,17 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
     const size_t n = x.size();
     const double tol = m_tolerance.get(), dtol = m_displacementTolerance.get();
     const long maxIt = m_maxIterations.get();
-    // a residual at round-off: the force a displacement of 1e-13 of the body's size gives in the stiffest mode
+    // a residual at round-off: the force that a displacement of 1e-15 of the body's size (some 5
+    // rounding errors of the positions) gives in the stiffest mode; below it nothing can improve
     double shapeNorm = 0;
     for (double m : d.shape) shapeNorm += m * m;
-    const double floor = 1e-13 * d.lambdaShape * d.diag * std::sqrt(shapeNorm);
+    const double floor = 1e-15 * d.lambdaShape * d.diag * std::sqrt(shapeNorm);
+    auto forceMet = [&](double r, double l) { return r <= std::max(tol * l, floor); };
+    // increments at the rounding of the positions (1e-15 of the body's size per component): the
+    // iteration cannot resolve the solution more finely, and the rate it shows is noise
+    double freeCount = 0;
+    for (double f : d.free) freeCount += f;
+    const double duFloor = 1e-15 * d.diag * std::sqrt(freeCount);
     LoadStepReport rep;
     d.start = x;
     d.prev = x;
@@ -194,16 +200,16 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
     double ext = loadNorm(g, d, t);
     double load = ext + norm(s.reaction());
     const double rn0 = rn;
-    rep.residual = rn / std::max(load, floor);
+    rep.residual = load > 0 ? rn / load : 0.0;
     rep.load = load;
-    if (rn <= tol * std::max(load, floor)) {  // already in equilibrium (a load held)
+    if (forceMet(rn, load)) {  // already in equilibrium (a load held)
         rep.converged = true;
         return rep;
     }
     std::vector<double> incr;  // ||du|| of the iterations
     Positions rNew(n);
     int restarts = 0;
-    long rescales = 0;
+    int stalled = 0;
     double c = d.c;
     for (long it = 1; it <= maxIt; ++it) {
         const double alpha = 2.0 / (2.0 + c), beta = (2.0 - c) / (2.0 + c);
@@ -228,13 +234,12 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
         const double q = mq > 0 ? kq / mq : 0.0;
         if (mq > 0 && std::isfinite(kq)) c = 2.0 * std::sqrt(std::clamp(q, 1e-16, 1.0));
         d.r.swap(rNew);
-        if (q > 4.0 / d.safety && std::isfinite(q)) {
+        if (q > 4.0 / d.safety && std::isfinite(q) && du2 > 1e4 * duFloor * duFloor) {
             // an increment stiffer than the largest eigenvalue estimated: the body stiffened as it
             // deformed (a Rayleigh quotient never exceeds the largest eigenvalue); make the mass heavier
             // so that this mode sits at the estimate again, with 20 % to spare
             d.lambdaShape *= 1.2 * q * d.safety / 4.0;
             scaleMass(d);
-            ++rescales;
             incr.clear();
         }
         if (!std::isfinite(rn) || rn > 1e8 * std::max({rn0, load, floor})) {
@@ -253,28 +258,30 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
             continue;
         }
         incr.push_back(std::sqrt(du2));
-        if (std::getenv("DR_DEBUG") && (it < 50 || it % 100 == 0)) std::fprintf(stderr, "it %ld rn %g du %g c %g kq %g mq %g lam %g\n", it, rn, std::sqrt(du2), c, kq, mq, d.lambdaShape);
+        // no component moved: the updates are below the rounding of the positions and nothing changes
+        stalled = du2 == 0 ? stalled + 1 : 0;
         const size_t m = incr.size();
         const size_t w = std::min<size_t>(m - 1, kWindow);
         double rho = 1.0;
         if (w > 0 && incr[m - 1 - w] > 0) rho = std::pow(incr[m - 1] / incr[m - 1 - w], 1.0 / double(w));
-        const double err = incr.back() == 0 ? 0.0 : rho < 1 ? rho / (1 - rho) * incr.back() : INFINITY;
+        const double err = incr.back() <= duFloor ? 0.0 : rho < 1 ? rho / (1 - rho) * incr.back() : INFINITY;
         rep.iterations = it;
         rep.rate = rho;
         rep.displacementError = u2 > 0 ? err / std::sqrt(u2) : err == 0 ? 0.0 : INFINITY;
         load = ext + norm(s.reaction());
-        rep.residual = rn / std::max(load, floor);
+        rep.residual = load > 0 ? rn / load : 0.0;
         rep.load = load;
-        if (rn <= tol * std::max(load, floor)) {
+        if (forceMet(rn, load)) {
             ext = loadNorm(g, d, t);  // the loads may follow the body (a pressure): measure them now
             load = ext + norm(s.reaction());
-            rep.residual = rn / std::max(load, floor);
+            rep.residual = load > 0 ? rn / load : 0.0;
             rep.load = load;
-            if (rn <= tol * std::max(load, floor) && rep.displacementError <= dtol) {
+            if (forceMet(rn, load) && rep.displacementError <= dtol) {
                 rep.converged = true;
                 break;
             }
         }
+        if (stalled >= 3) break;  // reported as not converged, at the residual reached
     }
     d.c = c;
     return rep;

@@ -39,9 +39,11 @@ struct LoadStepReport {
 ///   iteration by the Rayleigh quotient of the increments, du . K du / du . M du with
 ///   K du ~ -(r(n+1) - r(n)) (the paper's estimate of the lowest mode, which dominates the late
 ///   iterations). No damping is given by the user.
-/// - It stops when both hold: ||r|| <= tolerance (||external|| + ||reaction||), and the estimated
+/// - It stops when both hold: ||r|| <= tolerance (||external|| + ||reaction||) (or below the
+///   round-off floor, the force a displacement of 1e-15 of the body's size gives), and the estimated
 ///   distance to the solution rho / (1 - rho) ||du|| <= displacementTolerance ||u||, rho the
-///   convergence rate (the geometric mean of ||du(n)|| / ||du(n-1)|| over the last 20 iterations).
+///   convergence rate (the geometric mean of ||du(n)|| / ||du(n-1)|| over the last 20 iterations),
+///   or ||du|| at the rounding of the positions (1e-15 of the body's size per component).
 /// - The solution does not depend on the declared mass; gravity loads (m g) do.
 /// - With a ViscoelasticProny the force fields advance their viscous history once per load step:
 ///   every iteration of a step evaluates forces at the same time t + dt, from the history committed
