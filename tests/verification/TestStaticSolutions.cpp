@@ -220,3 +220,34 @@ TEST_CASE("DynamicRelaxation shrinks a cube under follower pressure to the volum
     const double J = 1 - p / 5000, s = std::cbrt(J);
     CHECK(homogeneousError(sim->state("state"), s, s) < 1e-8);
 }
+
+TEST_CASE("DynamicRelaxation stops at its force and displacement tolerances", "[DynamicRelaxation]") {
+    auto iterate = [](const std::string& attrs) {
+        auto sim = Simulation::fromString(
+            stretchScene("TLEDForceField", "tetrahedra6", 1.5, "<DynamicRelaxation name=\"dr\" " + attrs + "/>"));
+        sim->step();
+        const UniaxialNeoHookean ref(1000, 5000, 1.5);
+        auto rep = solver(*sim).reports().at(0);
+        return std::make_pair(rep, homogeneousError(sim->state("state"), ref.a, 1.5));
+    };
+    const auto [tight, tightErr] = iterate("tolerance=\"1e-10\" displacementTolerance=\"1e-10\"");
+    // a loose force tolerance: it stops when the displacement criterion (tight) holds
+    const auto [looseForce, lfErr] = iterate("tolerance=\"1e-3\" displacementTolerance=\"1e-10\"");
+    // both loose: far fewer iterations, a residual below the loose tolerance only
+    const auto [loose, looseErr] = iterate("tolerance=\"1e-3\" displacementTolerance=\"1e-3\"");
+    CAPTURE(tight.iterations, looseForce.iterations, loose.iterations, tightErr, lfErr, looseErr);
+    REQUIRE(tight.converged);
+    REQUIRE(looseForce.converged);
+    REQUIRE(loose.converged);
+    CHECK(tight.residual <= 1e-10);
+    CHECK(tight.displacementError <= 1e-10);
+    CHECK(loose.residual <= 1e-3);
+    CHECK(loose.residual > 1e-10);
+    CHECK(loose.displacementError <= 1e-3);
+    CHECK(loose.iterations < tight.iterations / 2);
+    CHECK(looseErr > 1e3 * tightErr);
+    // the displacement tolerance alone keeps it iterating where the force tolerance would have stopped
+    CHECK(looseForce.displacementError <= 1e-10);
+    CHECK(looseForce.iterations > loose.iterations);
+    CHECK(lfErr < 1e-7);
+}
