@@ -251,3 +251,32 @@ TEST_CASE("DynamicRelaxation stops at its force and displacement tolerances", "[
     CHECK(looseForce.iterations > loose.iterations);
     CHECK(lfErr < 1e-7);
 }
+
+TEST_CASE("DynamicRelaxation settles a column under its own weight to the bar solution", "[DynamicRelaxation]") {
+    // nu = 0 (kappa = 2 mu / 3, E = 2 mu), small strain: a bar, u_z(z) = -rho g / E (H z - z^2 / 2). The
+    // regular hexahedra (TLED) with the lumped nodal loads (those of a uniform body force on them) and
+    // a displacement linear in z in each layer are a chain of 1D linear elements, exact at the nodes
+    const double E = 1e10, rho = 1000, g = 9.81, H = 1;
+    auto sim = Simulation::fromString(R"(<Node name="root" dt="1" gravity="0 0 -9.81">
+  <GridMesh name="grid" min="0 0 0" max="1 1 1" resolution="2 2 4" element="hexahedra"/>
+  <MechanicalObject name="state"/>
+  <LumpedMass density="1000"/>
+  <NeoHookean name="mat" mu="5e9" kappa="3.3333333333333333e9"/>
+  <TLEDForceField name="ff"/>
+  <DynamicRelaxation name="dr" tolerance="1e-10" displacementTolerance="1e-10"/>
+  <FixedConstraint name="xmin" group="xmin" directions="1 0 0"/>
+  <FixedConstraint name="ymin" group="ymin" directions="0 1 0"/>
+  <FixedConstraint name="zmin" group="zmin" directions="0 0 1"/>
+</Node>)");
+    sim->step();
+    const auto& rep = solver(*sim).reports().at(0);
+    CAPTURE(rep.iterations, rep.residual);
+    REQUIRE(rep.converged);
+    const auto& s = sim->state("state");
+    const double top = -rho * g * H * H / (2 * E);
+    for (size_t i = 0; i < s.size(); ++i) {
+        const double z = s.x0()[i].z(), expected = -rho * g / E * (H * z - 0.5 * z * z);
+        CAPTURE(i, z);
+        CHECK(s.x()[i].z() - z == Approx(expected).margin(1e-5 * std::abs(top)));
+    }
+}
