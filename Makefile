@@ -4,7 +4,9 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SCENE ?= scenes/heml/abdomen.xml
-DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 libvtk9-dev
+# FASCIA_WITH_VTK=OFF builds without VTK (no .vtk/.vtu reader, no VTKExporter) and does not install it
+FASCIA_WITH_VTK ?= ON
+DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev)
 
 .PHONY: deps configure build run test bench install clean
 
@@ -19,7 +21,7 @@ deps:
 	fi
 
 configure: deps
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)

@@ -216,6 +216,11 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
 }
 
 size_t TLEDForceField::bufferRows() const { return m_impl->buffers.rows(); }
+bool TLEDForceField::usesFastPath() const {
+    for (const auto& g : m_impl->groups)
+        if (!g.law) return false;
+    return true;
+}
 
 double TLEDForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
     const Impl& im = *m_impl;

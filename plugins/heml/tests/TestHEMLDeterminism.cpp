@@ -1,5 +1,5 @@
 // HEMLForceField gives bitwise the same forces, energy and trajectory with 1, 2 and 3 threads
-// (DESIGN.md principle 5) on every force path: an inlined law, the batched virtual evaluation of
+// (docs/design.md, principle 5) on every force path: an inlined law, the batched virtual evaluation of
 // any other material, fibres per element (fibreArray, fibreArray2), Prony viscoelasticity, and
 // mass-spring mode. The mesh has about 24 element blocks, so that 3 threads running them in a
 // varying order would expose any order-dependent sum (an atomic or first-come scatter): with the

@@ -1,5 +1,5 @@
 // TLEDForceField gives bitwise the same forces, energy and trajectory with 1, 2 and 3 threads
-// (DESIGN.md principle 5) on every force path: elastic tetrahedra, hexahedra with hourglass control,
+// (docs/design.md, principle 5) on every force path: elastic tetrahedra, hexahedra with hourglass control,
 // a material outside the built-in laws (batched evaluation), fibres per element (fibreArray,
 // fibreArray2), and the viscous loops (one term, and several terms in two series). Each mesh has
 // 24 element blocks or more (2048 tetrahedra or 512 hexahedra each), so that 3 threads take them in

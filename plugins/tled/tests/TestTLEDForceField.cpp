@@ -58,6 +58,7 @@ TEST_CASE("TLEDForceField forces are the gradient of its energy, vanish at rest 
     Bench b(p);
     const auto& mat = b.material(type, defaultParams(type));
     b.forceField(t, h).init();
+    CHECK(b.ff->usesFastPath());  // every built-in law runs its inlined loop
 
     materials::conformance::ForceFieldCheckOptions opt;
     const auto rep = materials::conformance::checkForceField(*b.ff, *b.state, opt);
@@ -73,6 +74,57 @@ TEST_CASE("TLEDForceField forces are the gradient of its energy, vanish at rest 
         // boundary nodes feel it, so the rest force is of the order of the force scale
         CHECK(rep.restForce > 1e-3);
     }
+}
+
+namespace {
+// a material that is not a Material<Law> (a user's law): TLED runs its generic loop for it
+struct Wrapped : materials::BaseMaterial {
+    const materials::BaseMaterial* inner = nullptr;
+    unsigned uses() const override { return inner->uses(); }
+    void evaluate(const materials::Invariants* in, materials::Response* out, size_t n, double J0) const override {
+        inner->evaluate(in, out, n, J0);
+    }
+    double shearModulus() const override { return inner->shearModulus(); }
+    double bulkModulus() const override { return inner->bulkModulus(); }
+    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
+    bool stressFreeAtRest() const override { return inner->stressFreeAtRest(); }
+};
+} // namespace
+
+TEST_CASE("TLEDForceField runs a law outside the built-in list through its generic loop with the same forces",
+          "[TLEDForceField][conformance]") {
+    const std::string type = GENERATE(from_range(allMaterialTypes()));
+    const MeshKind kind = GENERATE(MeshKind::Tets, MeshKind::Hexes);
+    CAPTURE(type, meshName(kind));
+    Positions p;
+    Tetrahedra t;
+    Hexahedra h;
+    cubeMesh(kind, p, t, h);
+    const Mat3 F = (Mat3() << 1.08, 0.05, -0.02, 0.03, 0.93, 0.04, -0.01, 0.06, 1.02).finished();
+    // the built-in law, inlined
+    Bench a(p);
+    a.material(type, defaultParams(type));
+    a.forceField(t, h).init();
+    a.deform(F);
+    const Positions fa = a.forces();
+    // the same material behind a wrapper that is not in materials::BuiltinMaterials
+    Bench b(p);
+    auto& mat = b.material(type, defaultParams(type), "inner");
+    mat.init();
+    auto& w = b.root.add<Wrapped>("wrapped");
+    w.inner = &mat;
+    b.forceField(t, h);
+    b.ff->m_material.set(&w);
+    b.ff->init();
+    b.deform(F);
+    const Positions fb = b.forces();
+    CHECK(a.ff->usesFastPath());
+    CHECK_FALSE(b.ff->usesFastPath());
+    double err = 0, scale = 0;
+    for (size_t i = 0; i < fa.size(); ++i) err = std::max(err, (fa[i] - fb[i]).norm()), scale = std::max(scale, fa[i].norm());
+    CAPTURE(err, scale);
+    CHECK(scale > 0);
+    CHECK(err <= 1e-12 * scale);
 }
 
 TEST_CASE("TLEDForceField keeps its hourglass forces conservative and rotation-free on distorted hexahedra",

@@ -111,6 +111,10 @@ public:
     size_t blockCount() const;
     /// Node rows of the blocks' force buffers, all blocks together (for tests of the node ordering).
     size_t bufferRows() const;
+    /// True when every element group runs the inlined loop of a built-in law (false: some group's
+    /// material is not in materials::BuiltinMaterials and runs the generic loop, one virtual
+    /// evaluate() per batch).
+    bool usesFastPath() const;
 
     core::Param<MeshData> m_mesh{this, core::ParamSpec("mesh").help(
         "mesh to take the elements (tetrahedra and hexahedra), group tags and cell arrays from, e.g. "
