@@ -1,7 +1,8 @@
 // Runs Fascia's conformance harness on the example's force field and material:
 // forces = -grad(energy), zero force at rest, invariance under rigid motions; the Yeoh law's
-// derivatives against finite differences, in HEMLForceField and TLEDForceField alike; and the
-// force field's forces bitwise the same with 1 and 2 threads.
+// derivatives against finite differences, in HEMLForceField and TLEDForceField alike; the force
+// field's forces bitwise the same with 1 and 2 threads, and with its tetrahedra from the mesh
+// source in the node, from mesh= or from tetrahedra=.
 #include "fascia/materials/Conformance.h"
 #include "fascia/sim/Simulation.h"
 
@@ -36,13 +37,14 @@ static void checkField(const std::string& body, const std::string& label) {
     expect(r.rotationError < 1e-10, (label + ": rigid-motion invariance").c_str(), r.rotationError);
 }
 
-// forces on a 12 x 12 x 12 grid (8640 tetrahedra: 9 element blocks), deformed, with T threads
-static fascia::Positions forcesWith(int threads) {
+// forces on a 12 x 12 x 12 grid (8640 tetrahedra: 9 element blocks), deformed, with T threads and
+// the force field's attributes attrs
+static fascia::Positions forcesWith(int threads, const std::string& attrs = "") {
     omp_set_num_threads(threads);
     auto sim = fascia::core::Simulation::fromString(
         std::string("<Node name=\"root\" dt=\"1e-4\">\n  <RequiredPlugin name=\"") + EXAMPLE_PLUGIN_FILE + "\"/>\n"
-        "  <GridMesh min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"12 12 12\"/>\n  <MechanicalObject name=\"state\"/>\n"
-        "  <CorotationalTetForceField name=\"ff\" youngModulus=\"5000\" poissonRatio=\"0.4\"/>\n</Node>\n",
+        "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"12 12 12\"/>\n  <MechanicalObject name=\"state\"/>\n"
+        "  <CorotationalTetForceField name=\"ff\" youngModulus=\"5000\" poissonRatio=\"0.4\"" + attrs + "/>\n</Node>\n",
         "<threads>");
     auto& st = sim->state("state");
     for (size_t i = 0; i < st.size(); ++i) {
@@ -72,6 +74,17 @@ int main() {
         for (const auto& v : f1) largest = std::max(largest, v.norm());
         expect(largest > 0 && std::memcmp(f1.data(), f2.data(), f1.size() * sizeof(f1[0])) == 0,
                "CorotationalTetForceField: same forces with 1 and 2 threads", largest);
+        const fascia::Positions fm = forcesWith(2, " mesh=\"@grid.mesh\""), ft = forcesWith(2, " tetrahedra=\"@grid.tetrahedra\"");
+        expect(std::memcmp(f1.data(), fm.data(), f1.size() * sizeof(f1[0])) == 0 &&
+                   std::memcmp(f1.data(), ft.data(), f1.size() * sizeof(f1[0])) == 0,
+               "CorotationalTetForceField: same forces by mesh= and tetrahedra=", largest);
+        std::string both;
+        try {
+            forcesWith(1, " mesh=\"@grid.mesh\" tetrahedra=\"@grid.tetrahedra\"");
+        } catch (const std::exception& e) {
+            both = e.what();
+        }
+        expect(both.find("not both") != std::string::npos, "CorotationalTetForceField: mesh= and tetrahedra= together are an error", 0);
     } catch (const std::exception& e) {
         std::printf("error: %s\n", e.what());
         return 1;

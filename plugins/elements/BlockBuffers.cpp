@@ -54,4 +54,70 @@ void BlockBuffers::sumInto(double* fp) {
     }
 }
 
+
+size_t CompactBlockBuffers::addBlock(std::initializer_list<Nodes> parts) {
+    // the block's distinct nodes, in increasing order, are its rows
+    std::vector<int> nodes;
+    for (const Nodes& p : parts) nodes.insert(nodes.end(), p.nodes, p.nodes + p.count);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (const Nodes& p : parts)
+        for (size_t i = 0; i < p.count; ++i)
+            p.nodes[i] = static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), p.nodes[i]) - nodes.begin());
+    m_rowInternal.insert(m_rowInternal.end(), nodes.begin(), nodes.end());
+    m_rowStart.push_back(m_rowInternal.size());
+    return m_rowStart.size() - 2;
+}
+
+void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
+    m_nodeOf = std::move(nodeOf);
+    const size_t n = m_nodeOf.size(), rows = m_rowInternal.size();
+    m_rowNode.resize(rows);
+    for (size_t r = 0; r < rows; ++r) m_rowNode[r] = m_nodeOf[static_cast<size_t>(m_rowInternal[r])];
+    m_directGather = n * 3 * sizeof(double) <= (size_t(1) << 19);
+    m_xin.assign(4 * n, 0.0);
+    m_xrow.assign(4 * rows, 0.0);
+    m_buf.assign(4 * rows, 0.0);
+    // per node, its rows; rows ascend with the block index, so each list is in block order
+    m_nodeRowStart.assign(n + 1, 0);
+    for (int p : m_rowInternal) ++m_nodeRowStart[static_cast<size_t>(p) + 1];
+    for (size_t p = 0; p < n; ++p) m_nodeRowStart[p + 1] += m_nodeRowStart[p];
+    m_nodeRows.assign(rows, 0);
+    std::vector<int> fill(m_nodeRowStart.begin(), m_nodeRowStart.end() - 1);
+    for (size_t r = 0; r < rows; ++r) m_nodeRows[static_cast<size_t>(fill[static_cast<size_t>(m_rowInternal[r])]++)] = static_cast<int>(r);
+}
+
+const double* CompactBlockBuffers::positionsIn(const double* x) {
+    if (m_directGather) return x;
+    const size_t n = m_nodeOf.size();
+#pragma omp for schedule(static)
+    for (size_t p = 0; p < n; ++p) {
+        const double* s = x + 3 * size_t(m_nodeOf[p]);
+        double* q = m_xin.data() + 4 * p;
+        q[0] = s[0];
+        q[1] = s[1];
+        q[2] = s[2];
+        q[3] = 0.0;
+    }
+    return m_xin.data();
+}
+
+void CompactBlockBuffers::sumInto(double* fp) const {
+    const size_t n = m_nodeOf.size();
+#pragma omp for schedule(static)
+    for (size_t p = 0; p < n; ++p) {
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+        for (int k = m_nodeRowStart[p]; k < m_nodeRowStart[p + 1]; ++k) {
+            const double* r = m_buf.data() + 4 * size_t(m_nodeRows[static_cast<size_t>(k)]);
+            a0 += r[0];
+            a1 += r[1];
+            a2 += r[2];
+        }
+        double* q = fp + 3 * size_t(m_nodeOf[p]);
+        q[0] += a0;
+        q[1] += a1;
+        q[2] += a2;
+    }
+}
+
 } // namespace fascia::elements

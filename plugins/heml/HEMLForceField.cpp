@@ -1,7 +1,7 @@
 #include "fascia/heml/HEMLForceField.h"
 #include "HEMLKernel.h"
 
-#include "fascia/base/NodeOrder.h"
+#include "fascia/elements/NodeOrder.h"
 #include "fascia/elements/Errors.h"
 #include "fascia/elements/FibreField.h"
 #include "fascia/elements/Geometry.h"
@@ -30,8 +30,8 @@ using materials::BaseMaterial;
 namespace {
 
 template <class Law, bool Forces, bool Visco>
-double runLaw(HEMLData& d, const Block& b, const double* x) {
-    const BaseMaterial* m = d.materials[size_t(b.material)];
+double runLaw(HEMLData& d, size_t b, const double* x) {
+    const BaseMaterial* m = d.materials[size_t(d.blocks[b].material)];
     if constexpr (std::is_same_v<Law, elements::GenericLaw>)
         return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
     else
@@ -39,7 +39,7 @@ double runLaw(HEMLData& d, const Block& b, const double* x) {
 }
 
 template <bool Forces, bool Visco>
-double runSpring(HEMLData& d, const Block& b, const double* x) {
+double runSpring(HEMLData& d, size_t b, const double* x) {
     return runBlock<SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
 }
 
@@ -47,7 +47,7 @@ double runSpring(HEMLData& d, const Block& b, const double* x) {
 
 /// The element loops of one material: with forces and viscosity, with forces, energy alone.
 struct HEMLForceField::BlockFns {
-    using Fn = double (*)(HEMLData&, const Block&, const double*);
+    using Fn = double (*)(HEMLData&, size_t, const double*);
     Fn forcesVisco = nullptr, forces = nullptr, energy = nullptr;
     bool inlined = true;
 };
@@ -65,27 +65,10 @@ HEMLForceField::BlockFns loopsFor(const BaseMaterial* m) {
 
 // one block with the loop of its material (or the mass-spring loop)
 template <bool Forces, bool Visco>
-double runOne(HEMLData& d, const Block& b, const std::vector<HEMLForceField::BlockFns>& fns, const double* x) {
+double runOne(HEMLData& d, size_t b, const std::vector<HEMLForceField::BlockFns>& fns, const double* x) {
     if (d.massSpring) return runSpring<Forces, Visco>(d, b, x);
-    const HEMLForceField::BlockFns& f = fns[size_t(b.material)];
+    const HEMLForceField::BlockFns& f = fns[size_t(d.blocks[b].material)];
     return (Forces ? (Visco ? f.forcesVisco : f.forces) : f.energy)(d, b, x);
-}
-
-// positions (state order, 3 doubles per node) into the internal order (4 per node); call inside a
-// parallel region
-const double* copyIn(HEMLData& d, const double* x) {
-    if (d.directGather) return x;
-    const size_t n = d.nNodes;
-#pragma omp for schedule(static)
-    for (size_t p = 0; p < n; ++p) {
-        const double* s = x + 3 * size_t(d.nodeOf[p]);
-        double* q = d.xin.data() + 4 * p;
-        q[0] = s[0];
-        q[1] = s[1];
-        q[2] = s[2];
-        q[3] = 0.0;
-    }
-    return d.xin.data();
 }
 
 } // namespace
@@ -96,19 +79,11 @@ HEMLForceField::~HEMLForceField() = default;
 // ---------------------------------------------------------------------------------------------
 // set-up
 
-const MeshData* HEMLForceField::meshSource() const {
-    if (m_mesh.isSet()) return &m_mesh.get();
-    if (m_tetraIn.isSet() || !node()) return nullptr;
-    if (auto* topo = node()->findInContext<core::BaseTopology>()) return &topo->meshData();
-    return nullptr;
-}
-
 std::vector<core::Component*> HEMLForceField::dependencies() const {
     std::vector<core::Component*> deps;
     if (!node()) return deps;
     if (auto* s = node()->findInContext<core::BaseMechanicalState>()) deps.push_back(s);
-    if (!m_mesh.isSet() && !m_tetraIn.isSet())
-        if (auto* topo = node()->findInContext<core::BaseTopology>()) deps.push_back(topo);
+    elements::addTetMeshDependencies(*this, m_mesh, m_tetrahedra, deps);
     if (!m_stiffness.isSet()) {
         if (auto* m = elements::defaultMaterial(*this, m_material, m_groupMaterials)) deps.push_back(m);
         for (auto* m : elements::listedMaterials(*this, m_groupMaterials)) deps.push_back(m);
@@ -122,27 +97,11 @@ void HEMLForceField::init() {
     HEMLData& d = *m_data;
     d.J0 = m_J0.get();
 
-    // topology
-    if (m_mesh.isSet() && m_tetraIn.isSet())
-        fail(m_tetraIn, "give the tetrahedra either by 'mesh' or by 'tetrahedra', not both");
-    const MeshData* mesh = meshSource();
-    if (m_tetraIn.isSet()) m_tets = m_tetraIn.get();
-    else if (mesh) m_tets = mesh->tetrahedra;
-    else fail("no tetrahedra: set mesh=\"@loader.mesh\" or tetrahedra=\"@loader.tetrahedra\", or put a MeshLoader or GridMesh in the node");
-    if (m_tets.empty()) fail(m_tetraIn.isSet() ? static_cast<const core::BaseParam&>(m_tetraIn) : m_mesh, "the mesh has no tetrahedra");
-
-    // rest positions: the state's, else the mesh's points
-    Positions rest;
-    core::BaseMechanicalState* state = node() ? node()->findInContext<core::BaseMechanicalState>() : nullptr;
-    if (state && state->size() > 0) rest = state->x0();
-    else if (mesh && !mesh->points.empty()) rest = mesh->points;
-    else fail("no rest positions: put a MechanicalObject in the node (or give a mesh with points)");
-    const size_t n = rest.size();
-    for (size_t e = 0; e < m_tets.size(); ++e)
-        for (int a = 0; a < 4; ++a)
-            if (m_tets[e][a] < 0 || size_t(m_tets[e][a]) >= n)
-                fail("tetrahedron " + std::to_string(e) + " has node " + std::to_string(m_tets[e][a]) + " but there are " +
-                     std::to_string(n) + " nodes");
+    // topology and rest positions (the element layer's one rule)
+    elements::TetMesh tm = elements::resolveTetMesh(*this, m_mesh, m_tetrahedra);
+    m_tets = std::move(tm.tets);
+    const MeshData* mesh = tm.mesh;
+    const Positions& rest = tm.rest;
 
     // materials
     d.massSpring = m_stiffness.isSet();
@@ -179,44 +138,17 @@ void HEMLForceField::init() {
 
 namespace {
 
-/// The node rows of the blocks and the per-node lists of rows for the ordered sum.
-void buildNodeRows(HEMLData& d, size_t n) {
-    // node rows of the blocks: each block's distinct nodes (in internal order), elements renumbered
-    // to them; then, per node, its rows in block order for the reduction
-    d.rowInternal.clear();
-    std::vector<int>& rowInternal = d.rowInternal;
-    std::vector<int> local(n, -1);
-    for (auto& b : d.blocks) {
-        b.rowBegin = rowInternal.size();
-        std::vector<int> nodes;
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) nodes.push_back(d.node[a][s]);
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-        for (size_t i = 0; i < nodes.size(); ++i) {
-            local[nodes[i]] = int(i);
-            rowInternal.push_back(nodes[i]);
-        }
-        b.rowEnd = rowInternal.size();
-        for (size_t s = b.begin; s < b.end; ++s)
-            for (int a = 0; a < 4; ++a) d.node[a][s] = local[d.node[a][s]];
+/// The node rows of the blocks (compact rows: each block's distinct nodes, in internal order; the
+/// elements' nodes rewritten to them) and the per-node lists of rows for the ordered sum.
+void buildNodeRows(HEMLData& d) {
+    d.rows = elements::CompactBlockBuffers{};
+    for (const Block& b : d.blocks) {
+        const size_t count = b.end - b.begin;
+        d.rows.addBlock({{d.node[0].data() + b.begin, count}, {d.node[1].data() + b.begin, count},
+                         {d.node[2].data() + b.begin, count}, {d.node[3].data() + b.begin, count}});
     }
-    const size_t rows = rowInternal.size();
-    d.rowNode.resize(rows);
-    for (size_t r = 0; r < rows; ++r) d.rowNode[r] = d.nodeOf[rowInternal[r]];
-    // below about 20k nodes the state's positions stay in cache: skip the copy into internal order
-    d.directGather = n * sizeof(Vec3) <= (size_t(1) << 19);
-    d.xin.assign(4 * n, 0.0);
-    d.xrow.assign(4 * rows, 0.0);
-    d.buf.assign(4 * rows, 0.0);
-    d.nodeRowStart.assign(n + 1, 0);
-    for (int p : rowInternal) ++d.nodeRowStart[p + 1];
-    for (size_t p = 0; p < n; ++p) d.nodeRowStart[p + 1] += d.nodeRowStart[p];
-    d.nodeRows.assign(rows, 0);
-    std::vector<int> fill(d.nodeRowStart.begin(), d.nodeRowStart.end() - 1);
-    for (size_t r = 0; r < rows; ++r) d.nodeRows[fill[rowInternal[r]]++] = int(r);  // rows ascend: block order
+    d.rows.finish(d.nodeOf);
     d.blockEnergy.assign(d.blocks.size(), 0.0);
-
 }
 
 /// The viscoelastic state of eq. (18)-(20), one value per slot, term and relaxed component.
@@ -247,7 +179,7 @@ void HEMLForceField::precompute(const Positions& rest) {
 
     // node order
     // reverse Cuthill-McKee (docs/performance.md, lessons: node order): internal -> input node
-    d.nodeOf = reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
+    d.nodeOf = elements::reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
     d.internalOf.assign(n, 0);
     for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
 
@@ -376,7 +308,7 @@ void HEMLForceField::precompute(const Positions& rest) {
         }
     }
 
-    buildNodeRows(d, n);
+    buildNodeRows(d);
     setUpVisco(d, m_visco, S);
 }
 
@@ -415,30 +347,17 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
         d.A = m_visco->A();
         d.B = m_visco->B();
     }
-    const size_t n = d.nNodes, nb = d.blocks.size();
+    const size_t nb = d.blocks.size();
     const bool parallel = nb > 1;
 #pragma omp parallel if (parallel)
     {
-        const double* xi = copyIn(d, x);
+        const double* xi = d.rows.positionsIn(x);
         // element blocks, each into its own node rows
 #pragma omp for schedule(dynamic, 1)
         for (size_t b = 0; b < nb; ++b)
-            d.blockEnergy[b] = visco ? runOne<true, true>(d, d.blocks[b], m_fns, xi) : runOne<true, false>(d, d.blocks[b], m_fns, xi);
+            d.blockEnergy[b] = visco ? runOne<true, true>(d, b, m_fns, xi) : runOne<true, false>(d, b, m_fns, xi);
         // per node, sum its rows in block order (deterministic for any thread count)
-#pragma omp for schedule(static)
-        for (size_t p = 0; p < n; ++p) {
-            double a0 = 0.0, a1 = 0.0, a2 = 0.0;
-            for (int k = d.nodeRowStart[p]; k < d.nodeRowStart[p + 1]; ++k) {
-                const double* r = d.buf.data() + 4 * size_t(d.nodeRows[k]);
-                a0 += r[0];
-                a1 += r[1];
-                a2 += r[2];
-            }
-            double* q = fout + 3 * size_t(d.nodeOf[p]);
-            q[0] += a0;
-            q[1] += a1;
-            q[2] += a2;
-        }
+        d.rows.sumInto(fout);
     }
     if (visco && m_stepOpen) d.yComputed = true;
 }
@@ -450,9 +369,9 @@ double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     const size_t nb = d.blocks.size();
 #pragma omp parallel if (nb > 1)
     {
-        const double* xi = copyIn(d, x);
+        const double* xi = d.rows.positionsIn(x);
 #pragma omp for schedule(dynamic, 1)
-        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, d.blocks[b], m_fns, xi);
+        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, b, m_fns, xi);
     }
     double E = 0.0;
     for (double e : d.blockEnergy) E += e;

@@ -3,6 +3,7 @@
 /// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
 /// virtual call for any other material, or the mass-spring energy of eq. (38)).
 #include "fascia/base/Simd.h"
+#include "fascia/elements/BlockBuffers.h"
 #include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
 
@@ -38,11 +39,10 @@ inline void traceDk(double M11, double M22, double M33, double M12, double M23, 
 }
 
 /// A contiguous range of (padded) element slots with one material. Its elements refer to the
-/// block's own node rows [rowBegin, rowEnd): positions are copied into them before the block runs
-/// (so the gather reads from cache) and its forces are added into them (a per-block node buffer).
+/// block's own node rows (HEMLData::rows, block of the same index): positions are copied into them
+/// before the block runs (so the gather reads from cache) and its forces are added into them.
 struct Block {
     size_t begin = 0, end = 0;
-    size_t rowBegin = 0, rowEnd = 0;
     int material = -1;  ///< index into HEMLData::materials, -1 in mass-spring mode
 };
 
@@ -55,7 +55,7 @@ struct HEMLData {
     std::vector<int> slotOf;      ///< input element -> slot
 
     // per slot (structure of arrays)
-    IVec node[4];          ///< block-local node rows (relative to the block's rowBegin)
+    IVec node[4];          ///< the block's node rows (in HEMLData::rows; internal nodes before that)
     DVec vol;              ///< rest volume Vol (0 in padding slots)
     DVec invDetV;          ///< 1 / det(V1, V2, V3) (signed)
     /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
@@ -71,15 +71,8 @@ struct HEMLData {
     bool massSpring = false;
     double J0 = 0.4;
 
-    // node rows of the blocks (4 doubles each) and the deterministic reduction
-    std::vector<int> rowInternal;    ///< internal node of each row
-    std::vector<int> rowNode;        ///< state node of each row
-    bool directGather = false;       ///< rows read the state's positions directly (small meshes)
-    DVec xin;                        ///< positions in internal order, 4 doubles per node
-    DVec xrow;                       ///< positions per row
-    DVec buf;                        ///< forces per row (the per-block node buffers)
-    std::vector<int> nodeRowStart;   ///< per internal node p: its rows are nodeRows[nodeRowStart[p] .. [p+1])
-    std::vector<int> nodeRows;       ///< rows of each node, in block order
+    /// the node rows of the blocks (compact rows, 4 doubles each) and their ordered sum
+    elements::CompactBlockBuffers rows;
     std::vector<double> blockEnergy;
 
     // viscoelasticity (eq. (18)-(20)): per term and relaxed component, one value per slot
@@ -159,31 +152,6 @@ struct SpringEval {
     static constexpr bool spring = true;
     unsigned uses() const { return 0; }
 };
-/// Copies the block's node positions into its rows (x: the state's, 3 doubles per node, when
-/// d.directGather; else HEMLData::xin, 4 per node in internal order) and clears its force buffer.
-template <bool Forces>
-FASCIA_INLINE void copyRows(HEMLData& d, const Block& b, const double* x) {
-    if (d.directGather) {
-        // small meshes: straight from the state's positions (they sit in cache), one barrier less
-        for (size_t r = b.rowBegin; r < b.rowEnd; ++r) {
-            const double* p = x + 3 * size_t(d.rowNode[r]);
-            double* q = d.xrow.data() + 4 * r;
-            q[0] = p[0];
-            q[1] = p[1];
-            q[2] = p[2];
-            q[3] = 0.0;
-        }
-    } else {
-        // from the positions in internal order, where the rows of a block are close together
-        for (size_t r = b.rowBegin; r < b.rowEnd; ++r) {
-            const double* p = x + 4 * size_t(d.rowInternal[r]);
-            double* q = d.xrow.data() + 4 * r;
-            for (int k = 0; k < 4; ++k) q[k] = p[k];
-        }
-    }
-    if constexpr (Forces) std::fill(d.buf.data() + 4 * b.rowBegin, d.buf.data() + 4 * b.rowEnd, 0.0);
-}
-
 /// Edges, squared lengths l_k, invariants (eq. (C.1)) and J of the chunk at e0.
 template <class Eval>
 FASCIA_INLINE void edgesAndInvariants(HEMLData& d, Chunk& c, size_t e0, bool useI4, bool useI6) {
@@ -370,17 +338,17 @@ FASCIA_INLINE void nodalForces(HEMLData& d, Chunk& c, size_t e0) {
     }
 }
 
-/// Runs one block at positions x (the state's, 3 doubles per node, when d.directGather; else
-/// HEMLData::xin, 4 per node in internal order): forces into the block's node buffer (when Forces)
-/// and its energy.
+/// Runs block bi at positions x (HEMLData::rows.positionsIn's result): forces into the block's node
+/// buffer (when Forces) and its energy.
 /// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
 template <class Eval, bool Forces, bool Visco>
-double runBlock(HEMLData& d, const Block& b, const Eval& eval, const double* x) {
+double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
     Chunk c;
     double energy = 0.0;
-    copyRows<Forces>(d, b, x);
-    const double* xin = d.xrow.data() + 4 * b.rowBegin;
-    double* buf = d.buf.data() + 4 * b.rowBegin;
+    const Block& b = d.blocks[bi];
+    d.rows.loadBlock<Forces>(bi, x);
+    const double* xin = d.rows.positions(bi);
+    double* buf = d.rows.buffer(bi);
     const unsigned uses = eval.uses();
     const bool useI4 = (uses & materials::BaseMaterial::UsesI4) != 0;
     const bool useI6 = (uses & materials::BaseMaterial::UsesI6) != 0;

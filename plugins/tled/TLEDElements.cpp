@@ -3,7 +3,7 @@
 // the fixed blocks and the packed, batch-by-batch layout the kernel reads.
 #include "TLEDData.h"
 
-#include "fascia/base/NodeOrder.h"
+#include "fascia/elements/NodeOrder.h"
 #include "fascia/elements/FibreField.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
@@ -106,7 +106,7 @@ void chooseNodeOrder(Impl& im, Setup& su) {
     const size_t used = static_cast<size_t>(std::count(inUse.begin(), inUse.end(), 1));
     if (fileRows <= 2 * used) return;
     const size_t nT = su.tets.size(), nH = su.hexes.size();
-    std::vector<int> rcm = reverseCuthillMcKee(im.nodeCount, {{nT ? su.tets.front().data() : nullptr, nT, 4},
+    std::vector<int> rcm = elements::reverseCuthillMcKee(im.nodeCount, {{nT ? su.tets.front().data() : nullptr, nT, 4},
                                                               {nH ? su.hexes.front().data() : nullptr, nH, 8}});
     std::vector<int> rcmInternal(im.nodeCount);
     for (size_t q = 0; q < im.nodeCount; ++q) rcmInternal[static_cast<size_t>(rcm[q])] = static_cast<int>(q);

@@ -6,6 +6,9 @@
 //   fascia-dump [--steps N] [--every K] [--case NAME] [--list] OUT.txt
 //   fascia-dump --compare BEFORE.txt AFTER.txt
 //   fascia-dump --check-threads [--case NAME]    (1 and 2 threads must agree bitwise)
+//   fascia-dump [--steps N] [--every K] --scene FILE [--scene FILE ...] OUT.txt
+//       (those scene files instead of the cases, each started from the smooth deformation at half
+//       the critical time step: for a plugin's force field, with FASCIA_PLUGIN_PATH set)
 //
 // Cases: every scene under scenes/ (by its path), and inline variants covering HEML and TLED on
 // tetrahedra and hexahedra, every built-in law, mass-spring, fibres per element and per group,
@@ -336,6 +339,7 @@ int compare(const std::string& a, const std::string& b) {
 int main(int argc, char** argv) {
     int steps = 30, every = 10;
     std::string only, outFile;
+    std::vector<std::string> sceneFiles;
     bool list = false, checkThreads = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -343,6 +347,7 @@ int main(int argc, char** argv) {
         if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
         else if (a == "--every" && i + 1 < argc) every = std::atoi(argv[++i]);
         else if (a == "--case" && i + 1 < argc) only = argv[++i];
+        else if (a == "--scene" && i + 1 < argc) sceneFiles.push_back(argv[++i]);
         else if (a == "--list") list = true;
         else if (a == "--check-threads") checkThreads = true;
         else outFile = a;
@@ -351,7 +356,9 @@ int main(int argc, char** argv) {
     fs::create_directories(tmp);
     int rc = 0;
     try {
-        const auto cases = allCases(tmp);
+        std::vector<Case> cases;
+        for (const std::string& f : sceneFiles) cases.push_back({f, f, "", 2, true});
+        if (sceneFiles.empty()) cases = allCases(tmp);
         if (list) {
             for (auto& c : cases) std::cout << c.name << "\n";
         } else if (checkThreads) {

@@ -1,12 +1,13 @@
 // Tests of the element layer: the 3x3 vocabulary against Eigen, the stress formulas against each
 // other and against S = 2 dW/dC by finite differences, groupMaterials parsing, the law dispatch over
-// the one list, the block buffers' ordered sum and ElementAssembly's thread independence, the
-// density rule of the stable time step.
+// the one list, the block buffers' ordered sum (both layouts) and ElementAssembly's thread
+// independence, the node renumbering, the density rule of the stable time step.
 #include "fascia/elements/BlockBuffers.h"
 #include "fascia/elements/ElementAssembly.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/elements/LawDispatch.h"
+#include "fascia/elements/NodeOrder.h"
 #include "fascia/elements/Tensor3.h"
 #include "fascia/materials/Conformance.h"
 
@@ -15,6 +16,8 @@
 
 #include <Eigen/Dense>
 #include <cstring>
+#include <algorithm>
+#include <numeric>
 #include <random>
 
 using namespace fascia;
@@ -167,6 +170,123 @@ TEST_CASE("the block buffers add each node's rows in block order and clear them"
     CHECK(f[3 * 0 + 1] == 1.0 + (20 + 3 + 0.1));  // internal 3 only in block 1
     for (size_t b = 0; b < 2; ++b)
         for (size_t i = 0; i < 4 * size_t(bb.hi(b) - bb.lo(b) + 1); ++i) CHECK(bb.buffer(b)[i] == 0.0);
+}
+
+TEST_CASE("The compact block buffers rewrite each block's nodes to its rows and sum every node's rows in block order",
+          "[CompactBlockBuffers]") {
+    CompactBlockBuffers cb;
+    // block 0: two corners over two elements, internal nodes {3, 1} and {1, 4}: rows 1 3 4
+    std::vector<int> a0{3, 1}, a1{1, 4}, b0{4, 0, 4}, c0{4};
+    CHECK(cb.addBlock({{a0.data(), 2}, {a1.data(), 2}}) == 0);
+    CHECK(cb.addBlock({{b0.data(), 3}}) == 1);
+    CHECK(cb.addBlock({{c0.data(), 1}}) == 2);
+    CHECK(a0 == std::vector<int>{1, 0});
+    CHECK(a1 == std::vector<int>{0, 2});
+    CHECK(b0 == std::vector<int>{1, 0, 1});
+    cb.finish({4, 3, 2, 1, 0});  // internal node q is state node 4 - q
+    REQUIRE(cb.blockCount() == 3);
+    CHECK(cb.rows() == 6);
+    CHECK(cb.rowBegin(1) == 3);
+    CHECK(cb.rowEnd(1) == 5);
+    CHECK(cb.rowInternal() == std::vector<int>{1, 3, 4, 0, 4, 4});
+    CHECK(cb.directGather());  // 5 nodes: the state's positions are read in place
+    std::vector<double> x(15);
+    for (size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * double(i);
+    const double* xi = cb.positionsIn(x.data());
+    CHECK(xi == x.data());
+    for (size_t b = 0; b < 3; ++b) {
+        cb.loadBlock<true>(b, xi);
+        for (size_t r = 0; r < cb.rowEnd(b) - cb.rowBegin(b); ++r) {
+            const int state = 4 - cb.rowInternal()[cb.rowBegin(b) + r];
+            for (int c = 0; c < 3; ++c) CHECK(cb.positions(b)[4 * r + c] == x[3 * size_t(state) + size_t(c)]);
+            CHECK(cb.positions(b)[4 * r + 3] == 0.0);
+        }
+    }
+    // internal node 4 (state node 0) has a row in each block: 1, 1e16, -1e16 sum to 0 in block
+    // order ((1 + 1e16) rounds to 1e16), to 1 in the reverse order
+    cb.buffer(0)[4 * 2 + 0] = 1.0;
+    cb.buffer(1)[4 * 1 + 0] = 1e16;
+    cb.buffer(2)[4 * 0 + 0] = -1e16;
+    cb.buffer(1)[4 * 1 + 1] = 2.0;
+    cb.buffer(0)[4 * 0 + 2] = 3.0;  // internal node 1 (state node 3), block 0 only
+    std::vector<double> f(15, 1.0);
+    cb.sumInto(f.data());
+    CHECK(f[0] == 1.0);
+    CHECK(f[1] == 1.0 + 2.0);
+    CHECK(f[3 * 3 + 2] == 1.0 + 3.0);
+    CHECK(f[3 * 2 + 0] == 1.0);  // internal node 2 is in no block
+    // loadBlock<true> clears a block's buffer, loadBlock<false> leaves it
+    cb.loadBlock<false>(1, xi);
+    CHECK(cb.buffer(1)[4] == 1e16);
+    cb.loadBlock<true>(1, xi);
+    for (size_t i = 0; i < 8; ++i) CHECK(cb.buffer(1)[i] == 0.0);
+}
+
+TEST_CASE("The compact block buffers copy the positions into internal order on large meshes", "[CompactBlockBuffers]") {
+    const int n = 30000;  // above the direct-gather limit (about 21,800 nodes)
+    std::vector<int> nodeOf(n);
+    for (int q = 0; q < n; ++q) nodeOf[size_t(q)] = n - 1 - q;
+    CompactBlockBuffers cb;
+    std::vector<int> b0{0, n - 1, 15000}, b1{15000, 7};
+    cb.addBlock({{b0.data(), 3}});
+    cb.addBlock({{b1.data(), 2}});
+    cb.finish(nodeOf);
+    CHECK_FALSE(cb.directGather());
+    std::vector<double> x(3 * size_t(n));
+    for (size_t i = 0; i < x.size(); ++i) x[i] = std::sin(double(i));
+    const double* xi = cb.positionsIn(x.data());
+    REQUIRE(xi != x.data());
+    for (int q : {0, 7, 15000, n - 1})
+        for (int c = 0; c < 3; ++c) CHECK(xi[4 * q + c] == x[3 * size_t(n - 1 - q) + size_t(c)]);
+    cb.loadBlock<true>(1, xi);
+    // block 1's rows: internal nodes 7 and 15000
+    for (int c = 0; c < 3; ++c) {
+        CHECK(cb.positions(1)[c] == x[3 * size_t(n - 1 - 7) + size_t(c)]);
+        CHECK(cb.positions(1)[4 + c] == x[3 * size_t(n - 1 - 15000) + size_t(c)]);
+    }
+}
+
+TEST_CASE("Reverse Cuthill-McKee numbers a shuffled chain along the chain, the same every time", "[reverseCuthillMcKee]") {
+    // a chain of 200 nodes as 2-node elements, labelled at random, and one node no element uses
+    const size_t n = 201;
+    std::vector<int> label(200);
+    std::iota(label.begin(), label.end(), 0);
+    std::shuffle(label.begin(), label.end(), std::mt19937(3));
+    for (int& l : label) l = l >= 100 ? l + 1 : l;  // node 100 is the unused one
+    std::vector<int> links;
+    for (size_t i = 0; i + 1 < label.size(); ++i) links.insert(links.end(), {label[i], label[i + 1]});
+    const std::vector<int> order = reverseCuthillMcKee(n, {{links.data(), links.size() / 2, 2}});
+    REQUIRE(order.size() == n);
+    std::vector<int> sorted = order, all(n);
+    std::sort(sorted.begin(), sorted.end());
+    std::iota(all.begin(), all.end(), 0);
+    CHECK(sorted == all);  // a permutation
+    std::vector<int> pos(n);
+    for (size_t i = 0; i < n; ++i) pos[size_t(order[i])] = int(i);
+    int bandwidth = 0;
+    for (size_t i = 0; i + 1 < links.size(); i += 2) bandwidth = std::max(bandwidth, std::abs(pos[size_t(links[i])] - pos[size_t(links[i + 1])]));
+    CHECK(bandwidth == 1);
+    CHECK(reverseCuthillMcKee(n, {{links.data(), links.size() / 2, 2}}) == order);
+}
+
+TEST_CASE("Reverse Cuthill-McKee starts from the end of a strip, not from its least connected node", "[reverseCuthillMcKee]") {
+    // a strip of 2 x 60 nodes cut into triangles, and one node hanging from its middle by a
+    // 2-node element: that node is the least connected, but a numbering from it spreads both ways
+    // (bandwidth 5 or more); from a pseudo-peripheral node (an end of the strip) each BFS level
+    // holds at most 3 nodes, so no element spans more than 3 positions
+    const int L = 60, n = 2 * L + 1, hanging = 2 * L;
+    std::vector<int> tris, links{hanging, L};  // hangs from the top node of column L / 2
+    for (int i = 0; i + 1 < L; ++i) tris.insert(tris.end(), {2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 1, 2 * i + 3, 2 * i + 2});
+    const std::vector<int> order = reverseCuthillMcKee(size_t(n), {{tris.data(), tris.size() / 3, 3}, {links.data(), 1, 2}});
+    REQUIRE(order.size() == size_t(n));
+    std::vector<int> pos(size_t(n), -1);
+    for (size_t i = 0; i < order.size(); ++i) pos[size_t(order[i])] = int(i);
+    CHECK(std::count(pos.begin(), pos.end(), -1) == 0);
+    int bandwidth = 0;
+    for (size_t t = 0; t < tris.size(); t += 3)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) bandwidth = std::max(bandwidth, std::abs(pos[size_t(tris[t + a])] - pos[size_t(tris[t + b])]));
+    CHECK(bandwidth <= 3);
 }
 
 TEST_CASE("ElementAssembly gives the same forces with 1 and 2 threads", "[ElementAssembly]") {

@@ -477,7 +477,7 @@ TEST_CASE("set-up errors are located and say what to do", "[HEMLForceField]") {
     SECTION("mesh and tetrahedra both") {
         Scene s(mesh);
         addMaterial(s.root, "NeoHookean", "mat");
-        s.ff->m_tetraIn.set(mesh.tetrahedra);
+        s.ff->m_tetrahedra.set(mesh.tetrahedra);
         CHECK_THROWS_WITH(s.init(), Catch::Contains("not both"));
     }
     SECTION("a group material that is not a material") {

@@ -22,7 +22,7 @@ TEST_CASE("TLEDForceField and HEMLForceField give the same nodal forces on the s
     b.forceField(t, {}).init();
     auto& heml = b.root.add<fascia::heml::HEMLForceField>("heml");
     heml.setClassName("HEMLForceField");
-    heml.m_tetraIn.set(t);
+    heml.m_tetrahedra.set(t);
     heml.init();
 
     // a large deformation, with some elements compressed below J0 = 0.4 (the HEML section 4.4 branch)

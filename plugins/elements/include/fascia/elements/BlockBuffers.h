@@ -1,10 +1,19 @@
 #pragma once
-/// Deterministic block assembly for any element force field: elements are split into fixed blocks
-/// (their count depends on the mesh only, never on the thread count); each block adds its element
-/// forces into its own node buffer, which covers the range of node indices its elements touch
-/// (4 doubles per node: x y z and padding, the layout of simd::scatterAdd4); then sumInto() adds
-/// the buffers per node in block order. Results are bitwise identical for any number of threads
-/// (docs/design.md, "determinism"; docs/performance.md, lessons: block buffers).
+/// Deterministic block assembly for any element force field, in two layouts of the per-block node
+/// buffers. Both cut the elements into fixed blocks (their count depends on the mesh only, never on
+/// the thread count), let each block add its element forces into its own node buffer, and sum the
+/// buffers per node in block order, so results are bitwise identical for any number of threads
+/// (docs/design.md, principle 5; docs/performance.md, lessons 4 and 5):
+///
+/// - BlockBuffers: a block's buffer covers the range of node indices its elements touch; elements
+///   address it by node - lo(b). No copy-in; it grows with the numbering's bandwidth. TLED, and
+///   ElementAssembly for force fields that compute one element at a time.
+/// - CompactBlockBuffers: a block's buffer holds one row per distinct node of its elements (compact
+///   rows); the elements' node indices are rewritten to rows, the positions are copied into the
+///   rows before the block runs, and each node sums its list of rows. It does not grow with the
+///   bandwidth, at the price of the copy-in. HEML.
+///
+/// Rows are 4 doubles (x y z and padding, the layout of simd::gather4 and simd::scatterAdd4).
 ///
 ///   BlockBuffers bb;
 ///   for each block: bb.addBlock(lowestNode, highestNode);      // at init
@@ -15,7 +24,12 @@
 ///     for each block b: scatter forces into bb.buffer(b) at rows node - bb.lo(b)
 ///     bb.sumInto(f);                                           // orphaned omp for, clears the buffers
 ///   }
+#include "fascia/base/Simd.h"
+#include "fascia/elements/Hd.h"
+
+#include <algorithm>
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 namespace fascia::elements {
@@ -46,5 +60,103 @@ private:
     std::vector<int> m_nodeOf;
     size_t m_nodes = 0, m_size = 0;
 };
+
+/// Compact rows (see the top of this file): a sibling of BlockBuffers rather than a second layout
+/// of it, because the two share the contract (fixed blocks, one buffer each, the sum in block
+/// order) but no data: this one rewrites the elements' connectivity, keeps positions per row and
+/// sums per-node lists of rows, that one keeps a node range per block and sums tiles of nodes, so a
+/// class holding both would branch on the layout in every accessor of the hot loop.
+///
+///   CompactBlockBuffers rows;
+///   for each block: rows.addBlock({{nodes of corner 0, count}, ...});  // rewrites them to rows
+///   rows.finish(nodeOf);
+///   #pragma omp parallel
+///   {
+///     const double* xi = rows.positionsIn(x);                 // orphaned omp for (large meshes)
+///     #pragma omp for schedule(dynamic, 1)
+///     for each block b: rows.loadBlock<true>(b, xi); gather from rows.positions(b) at the
+///                       rewritten rows, scatter forces into rows.buffer(b)
+///     rows.sumInto(f);                                        // orphaned omp for
+///   }
+class CompactBlockBuffers {
+public:
+    /// count node indices at nodes (one corner of a block's elements, say).
+    struct Nodes {
+        int* nodes = nullptr;
+        size_t count = 0;
+    };
+    /// Adds a block whose elements use the internal nodes listed in parts (any order, repeats
+    /// allowed) and rewrites every entry to the node's row in the block: the block's distinct nodes
+    /// in increasing order are its rows 0, 1, ... Returns the block's index.
+    size_t addBlock(std::initializer_list<Nodes> parts);
+    /// Allocates the rows and buffers and builds, per node, its rows in block order. nodeOf:
+    /// internal node -> state node, one entry per node. Below about 20k nodes the blocks read the
+    /// state's positions directly (they stay in cache; docs/performance.md, lesson 5), above they
+    /// read a copy in internal order, where a block's rows are close together.
+    void finish(std::vector<int> nodeOf);
+
+    size_t blockCount() const { return m_rowStart.size() - 1; }
+    size_t rowBegin(size_t b) const { return m_rowStart[b]; }
+    size_t rowEnd(size_t b) const { return m_rowStart[b + 1]; }
+    /// Rows of all blocks together.
+    size_t rows() const { return m_rowInternal.size(); }
+    /// The internal node of each row.
+    const std::vector<int>& rowInternal() const { return m_rowInternal; }
+    const std::vector<int>& nodeOf() const { return m_nodeOf; }
+    bool directGather() const { return m_directGather; }
+
+    /// The positions the blocks load from, given the state's x (3 doubles per node): x itself when
+    /// directGather(), else x copied into internal order (4 doubles per node). An orphaned
+    /// "omp for": call it inside the parallel region of the element loop (or outside any).
+    const double* positionsIn(const double* x);
+    /// Copies block b's node positions into its rows from xi (positionsIn's result) and, when
+    /// ClearForces, clears its force buffer. Inline: it runs per block, inside the element loop.
+    template <bool ClearForces>
+    FASCIA_INLINE void loadBlock(size_t b, const double* xi);
+    /// Block b's node positions, row r at 4 r (valid after loadBlock).
+    const double* positions(size_t b) const { return m_xrow.data() + 4 * m_rowStart[b]; }
+    /// Block b's force buffer, row r at 4 r.
+    double* buffer(size_t b) { return m_buf.data() + 4 * m_rowStart[b]; }
+    const double* buffer(size_t b) const { return m_buf.data() + 4 * m_rowStart[b]; }
+    /// f (3 doubles per state node) += the buffers, each node's rows summed in block order (the
+    /// buffers are not cleared: loadBlock<true> does that). An orphaned "omp for", as positionsIn.
+    void sumInto(double* f) const;
+
+private:
+    std::vector<size_t> m_rowStart{0};  ///< rows of block b: [m_rowStart[b], m_rowStart[b + 1])
+    std::vector<int> m_rowInternal;     ///< internal node of each row
+    std::vector<int> m_rowNode;         ///< state node of each row
+    std::vector<int> m_nodeOf;          ///< internal node -> state node
+    std::vector<int> m_nodeRowStart;    ///< per internal node p: its rows are m_nodeRows[start[p] .. [p + 1])
+    std::vector<int> m_nodeRows;        ///< rows of each node, in block order
+    bool m_directGather = false;
+    simd::DVec m_xin;   ///< positions in internal order, 4 doubles per node
+    simd::DVec m_xrow;  ///< positions per row
+    simd::DVec m_buf;   ///< forces per row (the per-block node buffers)
+};
+
+template <bool ClearForces>
+FASCIA_INLINE void CompactBlockBuffers::loadBlock(size_t b, const double* xi) {
+    const size_t r0 = m_rowStart[b], r1 = m_rowStart[b + 1];
+    if (m_directGather) {
+        // small meshes: straight from the state's positions (they sit in cache), one barrier less
+        for (size_t r = r0; r < r1; ++r) {
+            const double* p = xi + 3 * size_t(m_rowNode[r]);
+            double* q = m_xrow.data() + 4 * r;
+            q[0] = p[0];
+            q[1] = p[1];
+            q[2] = p[2];
+            q[3] = 0.0;
+        }
+    } else {
+        // from the positions in internal order, where the rows of a block are close together
+        for (size_t r = r0; r < r1; ++r) {
+            const double* p = xi + 4 * size_t(m_rowInternal[r]);
+            double* q = m_xrow.data() + 4 * r;
+            for (int k = 0; k < 4; ++k) q[k] = p[k];
+        }
+    }
+    if constexpr (ClearForces) std::fill(m_buf.data() + 4 * r0, m_buf.data() + 4 * r1, 0.0);
+}
 
 } // namespace fascia::elements

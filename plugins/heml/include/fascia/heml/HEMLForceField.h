@@ -40,6 +40,7 @@
 /// inlined, vectorised loop (dispatch once per block on Material<Law>); other materials are
 /// evaluated by one virtual call per 16 elements.
 #include "fascia/elements/GroupMaterials.h"
+#include "fascia/elements/TetMesh.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -97,10 +98,8 @@ public:
         "\"1 @liverMat 2 @tumourMat\"; groups not listed use 'material' (needs a mesh with groups)")};
     core::Param<double> m_J0{this, core::ParamSpec("J0").min(0, true).max(1, true).help(
         "volume ratio below which the volumetric response continues along its tangent (HEML section 4.4)"), 0.4};
-    core::Param<MeshData> m_mesh{this, core::ParamSpec("mesh").help(
-        "mesh with the tetrahedra (and groups, cell arrays), e.g. \"@loader.mesh\"; default: the mesh source in the context")};
-    core::Param<Tetrahedra> m_tetraIn{this, core::ParamSpec("tetrahedra").help(
-        "tetrahedra (4 node indices each), inline or e.g. \"@loader.tetrahedra\" (instead of mesh)")};
+    core::Param<MeshData> m_mesh{this, elements::tetMeshParam()};
+    core::Param<Tetrahedra> m_tetrahedra{this, elements::tetrahedraParam()};
     core::Param<double> m_stiffness{this, core::ParamSpec("stiffness").unit("N/m").above(0).help(
         "mass-spring mode (HEML section 5.3, eq. (38)-(41)): one spring of this stiffness per mesh edge instead of a material")};
     core::Param<std::string> m_fibreArray{this, core::ParamSpec("fibreArray").help(
@@ -109,7 +108,6 @@ public:
         "name of a mesh cell array with the second fibre direction b0 per tetrahedron (orthotropic materials)")};
 
 private:
-    const MeshData* meshSource() const;
     void precompute(const Positions& rest);
     void checkState(const core::BaseMechanicalState& state) const;
 

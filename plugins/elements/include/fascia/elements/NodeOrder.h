@@ -1,10 +1,11 @@
 #pragma once
-/// Node orderings for the element loops of the force fields.
+/// Node renumbering for the element loops of the force fields (the element layer's: the core knows
+/// no elements). Used by HEML (always) and TLED (when the file's order makes its buffers large).
 #include <cstddef>
 #include <initializer_list>
 #include <vector>
 
-namespace fascia {
+namespace fascia::elements {
 
 /// The node indices of a list of elements: count elements of perElement nodes each, one after the other.
 struct ElementNodes {
@@ -19,4 +20,4 @@ struct ElementNodes {
 /// from its least connected node); neighbours are visited by increasing degree. Deterministic.
 std::vector<int> reverseCuthillMcKee(size_t n, std::initializer_list<ElementNodes> elements);
 
-} // namespace fascia
+} // namespace fascia::elements

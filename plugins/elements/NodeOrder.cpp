@@ -1,9 +1,9 @@
-#include "fascia/base/NodeOrder.h"
+#include "fascia/elements/NodeOrder.h"
 
 #include <algorithm>
 #include <numeric>
 
-namespace fascia {
+namespace fascia::elements {
 
 std::vector<int> reverseCuthillMcKee(size_t n, std::initializer_list<ElementNodes> elements) {
     std::vector<std::vector<int>> adj(n);
@@ -77,4 +77,4 @@ std::vector<int> reverseCuthillMcKee(size_t n, std::initializer_list<ElementNode
     return order;
 }
 
-} // namespace fascia
+} // namespace fascia::elements
