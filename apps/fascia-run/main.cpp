@@ -31,8 +31,9 @@ usage:
 
 options:
   --steps N        run N steps
-  --time T         run until T seconds of simulated time (ceil(T/dt) steps)
-                   (default: the root node's endTime, or 100 steps when it has none)
+  --time T         run until T seconds of simulated time, exactly: steps of dt, the last
+                   one shortened to end on T (ceil(T/dt) steps); a dt larger than T is an
+                   error (default: the root node's endTime, or 100 steps when it has none)
   --dt DT          time step in seconds, overriding the scene's dt
   --threads N      OpenMP threads (default: all cores); results do not depend on it
   --output DIR     folder exporters and monitors write into (created; default: .)
@@ -91,7 +92,9 @@ int listComponents() {
     for (auto& [n, e] : reg.entries()) w = std::max(w, n.size());
     for (auto& [n, e] : reg.entries()) {
         std::string plugin = e.plugin.empty() ? "core" : e.plugin;
-        std::printf("%-*s  %-22s %s\n", int(w), n.c_str(), plugin.c_str(), e.description.c_str());
+        // the first line of the description (further lines are details for --describe)
+        const std::string first = e.description.substr(0, e.description.find('\n'));
+        std::printf("%-*s  %-22s %s\n", int(w), n.c_str(), plugin.c_str(), first.c_str());
     }
     return 0;
 }
@@ -197,13 +200,15 @@ int main(int argc, char** argv) {
         auto sim = Simulation::fromFile(scene, opts);
         if (!(sim->dt() > 0))
             throwInputError({scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
+        // a run to an end time ends on it exactly: its last step is shortened (Simulation::stepToward)
+        const double T = steps >= 0 ? 0.0 : endTime > 0 ? endTime : sim->root().endTime.get();
         if (steps < 0) {
-            double T = endTime > 0 ? endTime : sim->root().endTime.get();
+            if (T > 0) sim->checkEndTime(T);
             const double n = T > 0 ? std::ceil(T / sim->dt() - 1e-9) : 100.0;
             if (!(n <= double(kMaxSteps)))
                 throwInputError({scene, sim->root().loc().line}, "time " + std::to_string(T) + " s at dt = " +
                                                                      std::to_string(sim->dt()) + " s is more than 1e12 steps");
-            steps = long(n);
+            steps = T > 0 ? sim->stepsUntil(T) : long(n);
         }
         sim->start();  // the scene is valid: only now do the observers write the initial state
         std::signal(SIGINT, onSignal);
@@ -213,7 +218,8 @@ int main(int argc, char** argv) {
         auto lastDraw = start;
         long done = 0;
         for (; done < steps && !g_interrupted; ++done) {
-            sim->step();
+            if (T > 0) sim->stepToward(T);
+            else sim->step();
             if (bar) {
                 auto now = std::chrono::steady_clock::now();
                 if (now - lastDraw > std::chrono::milliseconds(100) || done + 1 == steps) {

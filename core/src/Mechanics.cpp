@@ -25,7 +25,8 @@ void MechanicalGroup::computeForces(double t) {
     double* __restrict fp = flat(f);
     const double* __restrict ep = flat(ext);
     const double* __restrict m = mass.data();
-    const double g[3] = {gravity[0], gravity[1], gravity[2]};
+    const double c = gravityCurve ? gravityCurve->value(t) : 1.0;
+    const double g[3] = {c * gravity[0], c * gravity[1], c * gravity[2]};
     forEachNodeRange(static_cast<long>(n), [&](long lo, long hi) {
         if (haveExt && haveGravity) {
             for (long i = lo; i < hi; ++i)
@@ -64,6 +65,19 @@ void MechanicalGroup::computeForces(double t) {
         const size_t i = size_t(reactionNodes[k]);
         r[i] = f[i] - beforeConstraints[k];
     }
+}
+
+double MechanicalGroup::residualNorm(double t) {
+    // the forces of a step at t, then f, the reactions and their node list put back as they were
+    const Positions f0 = state->f(), r0 = state->reaction();
+    const IndexList nodes0 = reactionNodes;
+    computeForces(t);
+    double sum = 0;  // in node order: the same sum for any thread count
+    for (const Vec3& fi : state->f()) sum += fi.squaredNorm();
+    state->f() = f0;
+    state->reaction() = r0;
+    reactionNodes = nodes0;
+    return std::sqrt(sum);
 }
 
 void MechanicalGroup::projectState(double t) {

@@ -136,4 +136,10 @@ Vec3 Node::contextGravity() const {
     return Vec3::Zero();
 }
 
+const Curve& Node::contextGravityCurve() const {
+    for (const Node* n = this; n; n = n->m_parent)
+        if (n->gravity.isSet()) return n->gravityCurve.get();
+    return gravityCurve.get();  // unset: the constant 1 (no gravity to scale anyway)
+}
+
 } // namespace fascia::core

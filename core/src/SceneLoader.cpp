@@ -129,7 +129,8 @@ void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks) {
                                           ": unknown attribute '" + key + "'",
                             notes);
         }
-        if (!allowLinks && !value.empty() && value[0] == '@')
+        // a node's parameters take values, except a link to a component (gravityCurve="@ramp")
+        if (!allowLinks && !value.empty() && value[0] == '@' && !p->isComponentLink())
             throwInputError(spec.loc, obj.className() + ": attribute '" + key + "' cannot be a link");
         p->read(value, spec.loc);
     }
@@ -215,9 +216,9 @@ std::vector<std::string> allComponentPaths(Node& root) {
     return out;
 }
 
-void resolveLinks(Node& root) {
-    root.visit([&](const Node& n) {
-        for (auto& c : n.components()) {
+/// Resolves the links of one object's parameters (a component's, or a node's own, e.g. gravityCurve),
+/// relative to node n.
+void resolveLinksOf(Base* c, const Node& n, Node& root) {
             for (BaseParam* p : c->params()) {
                 if (p->linkText().empty()) continue;
                 const std::string link = p->linkText().substr(1);
@@ -239,7 +240,7 @@ void resolveLinks(Node& root) {
                                     "' from node '" + n.name() + "'",
                             notes);
                 }
-                if (target == c.get()) c->fail(*p, p->name() + " links to its own component");
+                if (target == c) c->fail(*p, p->name() + " links to its own component");
                 p->setLinkTarget(target);
                 if (p->isComponentLink()) {
                     auto* l = static_cast<BaseLink*>(p);
@@ -261,7 +262,12 @@ void resolveLinks(Node& root) {
                                     " (" + src->typeName() + ")");
                 p->bindTo(src);
             }
-        }
+}
+
+void resolveLinks(Node& root) {
+    root.visit([&](const Node& n) {
+        resolveLinksOf(const_cast<Node*>(&n), n, root);
+        for (auto& c : n.components()) resolveLinksOf(c.get(), n, root);
     });
 }
 

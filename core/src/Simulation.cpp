@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -79,6 +80,37 @@ void checkOneIntegratorPerNode(const Node& root) {
     });
 }
 
+/// Two constraints on one node and axis, either of which prescribes its motion, fight over it: an
+/// input error at the later one naming the earlier and the first such node. (Two that hold a node at
+/// rest agree, e.g. rollers on two faces that share an edge.)
+void checkConstraintConflicts(const MechanicalGroup& g) {
+    const size_t n = g.state->size();
+    std::vector<int> owner(3 * n, -1);  // per node and axis: the first constraint holding it
+    static const char* kAxis[3] = {"x", "y", "z"};
+    for (size_t c = 0; c < g.constraints.size(); ++c) {
+        const BaseConstraint* k = g.constraints[c];
+        const std::array<bool, 3> axes = k->constrainedAxes();
+        for (int i : k->constrainedNodes()) {
+            if (i < 0 || size_t(i) >= n) continue;  // each constraint checks its own indices
+            for (int a = 0; a < 3; ++a) {
+                if (!axes[size_t(a)]) continue;
+                int& o = owner[3 * size_t(i) + size_t(a)];
+                if (o < 0) {
+                    o = int(c);
+                    continue;
+                }
+                const BaseConstraint* other = g.constraints[size_t(o)];
+                if (other == k || (!k->prescribesMotion() && !other->prescribesMotion())) continue;
+                k->fail("node " + std::to_string(i) + " axis " + kAxis[a] + " is also constrained by " + other->className() +
+                            " '" + other->path() + "'" + (other->loc().empty() ? "" : " (" + other->loc().str() + ")") +
+                            ", and " + (k->prescribesMotion() ? "this one" : "that one") +
+                            " prescribes its motion: a node's axis can follow one constraint only",
+                        {"remove the node from one of them, or let them hold different axes (directions=\"1 1 0\" ...)"});
+            }
+        }
+    }
+}
+
 struct InitOrder {
     std::set<Component*> done, active;
     void run(Component* c) {
@@ -124,6 +156,7 @@ void Simulation::init() {
         g.integrator = integ;
         g.state = s;
         g.gravity = s->node()->contextGravity();
+        g.gravityCurve = &s->node()->contextGravityCurve();
         m_groups.push_back(std::move(g));
     }
     for (Component* c : m_all) {
@@ -162,6 +195,7 @@ void Simulation::init() {
         }
         if (massless && !g.masses.empty())
             g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+        checkConstraintConflicts(g);
     }
 
     // time step
@@ -178,7 +212,10 @@ void Simulation::init() {
                            {"check the moduli (mu, E, bulk modulus) and the density: a modulus near the largest "
                             "double (1e308) overflows, and a zero density has no wave speed",
                             "or give dt in seconds on the root node"});
-        m_dt = crit * m_root->dtSafety.get();
+        // the integrators' own limits (ExplicitEuler's is not central difference's)
+        const IntegratorLimit lim = integratorLimit();
+        if (lim.integrator && !(lim.step > 0)) lim.integrator->fail("dt=\"auto\" finds no stable time step: " + lim.why);
+        m_dt = std::min(crit, lim.step) * m_root->dtSafety.get();
     } else if (ts.value > 0) {
         m_dt = ts.value;
     }
@@ -190,6 +227,7 @@ void Simulation::init() {
     SceneContext& ctx = m_root->context();
     ctx.time = m_time;
     ctx.step = m_step;
+    ctx.groups = &m_groups;
 }
 
 void Simulation::start() {
@@ -214,7 +252,26 @@ std::pair<double, const BaseForceField*> Simulation::limitingForceField() const 
     return {crit, limiting};
 }
 
-void Simulation::setDt(double dt) {
+Simulation::IntegratorLimit Simulation::integratorLimit() const {
+    IntegratorLimit out;
+    for (auto& g : m_groups) {
+        double crit = std::numeric_limits<double>::infinity();
+        for (auto* ff : g.forceFields) crit = std::min(crit, ff->stableTimeStep(*g.state));
+        std::string why;
+        const double s = g.integrator->stableTimeStep(crit, why);
+        if (s < out.step || !(s > 0)) {
+            out.step = s;
+            out.integrator = g.integrator;
+            out.why = why;
+            if (!(s > 0)) break;
+        }
+    }
+    return out;
+}
+
+void Simulation::setDt(double dt) { applyDt(dt, true); }
+
+void Simulation::applyDt(double dt, bool warnAboveCritical) {
     if (!(dt > 0) || !std::isfinite(dt))
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
     m_dt = dt;
@@ -222,10 +279,14 @@ void Simulation::setDt(double dt) {
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
     const auto [crit, limiting] = limitingForceField();
-    if (dt > crit)
+    if (warnAboveCritical && dt > crit)
         m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
                      " s of " + limiting->className() + " '" + limiting->path() +
                      "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
+    else if (const IntegratorLimit lim = integratorLimit(); warnAboveCritical && lim.integrator && dt > lim.step)
+        lim.integrator->warn(lim.step > 0 ? "dt = " + shortNumber(dt) + " s is above its stable time step " + shortNumber(lim.step) +
+                                                " s (with its damping): the integration will likely be unstable (dt=\"auto\" picks a stable one)"
+                                          : "no time step is stable: " + lim.why);
     for (Component* c : m_all) c->dtChanged(dt);
 }
 
@@ -248,22 +309,34 @@ void Simulation::requireDt() const {
         throwInputError(m_root->loc(), "no time step: set dt on the root node (seconds or \"auto\") or pass --dt");
 }
 
-void Simulation::step() {
+void Simulation::step() { advance(std::numeric_limits<double>::quiet_NaN()); }
+
+void Simulation::advance(double end) {
     if (!m_initialised) init();
     requireDt();
     start();
     SceneContext& ctx = m_root->context();
-    for (Component* c : m_all) c->beginStep(m_time, m_dt);
-    for (auto& g : m_groups) {
-        g.stepIndex = m_step + 1;
-        {
-            ScopedTimer t(g.integrator->timer());
-            g.integrator->step(g, m_time, m_dt);
+    try {
+        for (Component* c : m_all) c->beginStep(m_time, m_dt);
+        for (auto& g : m_groups) {
+            g.stepIndex = m_step + 1;
+            {
+                ScopedTimer t(g.integrator->timer());
+                g.integrator->step(g, m_time, m_dt);
+            }
+            g.checkFinite(m_time + m_dt);
         }
-        g.checkFinite(m_time + m_dt);
+    } catch (...) {
+        m_failed = true;  // finish() then records no final state
+        throw;
     }
     ++m_step;
     m_time = m_timeAtDtChange + double(m_step - m_stepAtDtChange) * m_dt;  // no drift from summing dt
+    if (!std::isnan(end)) {  // a run's last step ends on its end time exactly; later steps count from it
+        m_time = end;
+        m_timeAtDtChange = end;
+        m_stepAtDtChange = m_step;
+    }
     ctx.time = m_time;
     ctx.step = m_step;
     for (auto* o : m_observers) {
@@ -279,9 +352,57 @@ void Simulation::run(long steps) {
     for (long i = 0; i < steps; ++i) step();
 }
 
+namespace {
+/// Two times closer than this many steps are one (round-off of t0 + n dt).
+constexpr double kTimeTolerance = 1e-9;
+} // namespace
+
+void Simulation::checkEndTime(double T) const {
+    requireDt();
+    if (m_dt > (T - m_time) * (1 + kTimeTolerance))
+        m_root->fail(m_root->dt.isSet() ? static_cast<const BaseParam&>(m_root->dt) : m_root->endTime,
+                     "dt = " + shortNumber(m_dt) + " s is larger than the time to run, " + shortNumber(T - m_time) +
+                         " s (end time " + shortNumber(T) + " s): not even one step fits",
+                     {"make dt smaller than the end time, or the end time (endTime, --time) longer"});
+}
+
+long Simulation::stepsUntil(double T) const {
+    if (!(m_dt > 0) || !(T > m_time)) return 0;
+    const double n = std::ceil((T - m_time) / m_dt - kTimeTolerance);
+    return n < 1 ? 0 : n > 9e18 ? std::numeric_limits<long>::max() : long(n);
+}
+
+void Simulation::stepToward(double T) {
+    if (!m_initialised) init();
+    requireDt();
+    const double left = T - m_time, dt = m_dt;
+    if (!(left > kTimeTolerance * dt)) return;
+    if (left > dt * (1 + kTimeTolerance)) return step();
+    // the last step: shortened to end on T, or a whole one when T is a multiple of dt up to round-off
+    const bool shorten = left < dt * (1 - kTimeTolerance);
+    if (shorten) applyDt(left, false);
+    advance(T);
+    if (shorten) applyDt(dt, false);
+}
+
+void Simulation::runUntil(double T) {
+    if (!m_initialised) init();
+    requireDt();
+    if (!std::isfinite(T)) throwInputError({}, "end time " + std::to_string(T) + " s is not a finite number");
+    if (m_step == 0) checkEndTime(T);  // before the observers write the initial state
+    start();
+    while (T - m_time > kTimeTolerance * m_dt) stepToward(T);
+}
+
 void Simulation::finish() {
     if (m_finished || !m_initialised) return;
     m_finished = true;
+    // the final state, whatever the observers' `every` (not after a failed step: its state is not one)
+    if (m_started && !m_failed)
+        for (auto* o : m_observers) {
+            ScopedTimer t(o->timer());
+            o->observeFinal(m_time, m_step);
+        }
     for (Component* c : m_all) c->cleanup();
 }
 

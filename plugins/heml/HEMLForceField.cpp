@@ -8,6 +8,7 @@
 #include "fascia/elements/LawDispatch.h"
 #include "fascia/elements/Tensor3.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/materials/RelaxationSplit.h"
 #include "fascia/scene/Node.h"
 #include "fascia/viscoelastic/ViscoelasticProny.h"
 
@@ -131,6 +132,18 @@ void HEMLForceField::init() {
     // viscoelasticity
     m_visco = node() ? node()->findLocal<viscoelastic::ViscoelasticProny>() : nullptr;
     if (m_visco && d.massSpring) fail(m_stiffness, "ViscoelasticProny is not supported in mass-spring mode");
+    // each part that relaxes must be stress-free at rest, or a body at rest creeps (RelaxationSplit.h)
+    if (m_visco && !d.massSpring) {
+        std::vector<const BaseMaterial*> seen;
+        for (const BaseMaterial* m : m_elementMaterial) {
+            if (std::find(seen.begin(), seen.end(), m) != seen.end()) continue;
+            seen.push_back(m);
+            const std::string err = materials::relaxationRestError(materials::relaxationSplit(*m, d.J0),
+                                                                   m_visco->relaxesIsochoric(), m_visco->relaxesVolumetric(),
+                                                                   m->className() + " '" + m->name() + "'");
+            if (!err.empty()) m_visco->failApply(err);
+        }
+    }
 
     m_rest = rest;
     precompute(rest);
@@ -159,11 +172,15 @@ void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_
     d.Yprev.clear();
     d.Ycur.clear();
     d.yComputed = false;
+    d.restShift.assign(d.materials.size(), 0.0);
     if (visco) {
         d.nTerms = int(visco->termCount());
         d.relaxIso = visco->relaxesIsochoric();
         d.relaxVol = visco->relaxesVolumetric();
         d.nComp = d.relaxIso ? 7 : 1;
+        // one part relaxes: move each material's rest-stress term s ln J out of the isochoric part
+        if (d.relaxIso != d.relaxVol)
+            for (size_t m = 0; m < d.materials.size(); ++m) d.restShift[m] = materials::relaxationSplit(*d.materials[m], d.J0).shift;
         d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
         d.Ycur = d.Yprev;
     }

@@ -78,6 +78,9 @@ struct HEMLData {
     // viscoelasticity (eq. (18)-(20)): per term and relaxed component, one value per slot
     int nTerms = 0, nComp = 0;
     bool relaxIso = false, relaxVol = false;
+    /// per material: the s of s ln J moved from the isochoric to the volumetric part before one of
+    /// them relaxes, so that each is stress-free at rest (materials/RelaxationSplit.h); 0 when both relax
+    std::vector<double> restShift;
     std::vector<double> A, B;
     std::vector<DVec> Yprev, Ycur;
     bool yComputed = false;
@@ -265,8 +268,19 @@ FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI
     }
 }
 
-/// Viscoelastic relaxation of the chunk's generalised forces (see HEMLForceField.h).
-FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0) {
+/// Viscoelastic relaxation of the chunk's generalised forces (see HEMLForceField.h); shift: the
+/// block material's HEMLData::restShift.
+FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
+    // the parts that relax, each stress-free at rest: Vol s / J moved from Qi to Qv (their sum, the
+    // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
+    if (shift != 0.0) {
+        const double* vol = d.vol.data() + e0;
+        for (int j = 0; j < kLanes; ++j) {
+            const double q = vol[j] * shift / std::max(d.J0, c.J[j]);
+            c.Qi[j] -= q;
+            c.Qv[j] += q;
+        }
+    }
     // eq. (20): gamma_i^n = A_i f^n + B_i gamma_i^(n-1); eq. (18): f - sum_i gamma_i, on the
     // generalised forces: g_k and the isochoric J part (apply = isochoric), the volumetric J
     // part (volumetric), or g_k and the whole J part (both)
@@ -361,7 +375,7 @@ double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
         edgesAndInvariants<Eval>(d, c, e0, useI4, useI6);
         if constexpr (!Eval::spring) eval(c, d.J0);  // the law
         generalisedForces<Eval>(d, c, e0, useI4, useI6);
-        if constexpr (Forces && Visco) relax(d, c, e0);
+        if constexpr (Forces && Visco) relax(d, c, e0, b.material >= 0 ? d.restShift[size_t(b.material)] : 0.0);
         if constexpr (Forces) nodalForces(d, c, e0);
         for (int j = 0; j < kLanes; ++j) energy += c.We[j];
         // scatter into the block's node buffer, in a fixed order (each row loaded, added and stored

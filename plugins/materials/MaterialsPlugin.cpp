@@ -1,13 +1,16 @@
 #include "fascia/materials/BuiltinMaterials.h"
 #include "fascia/plugin/Plugin.h"
 
+#include <string>
+
 using namespace fascia::materials;
 
 static void registerAll(fascia::core::Registry& r) {
-    // every built-in material, from the one list (BuiltinMaterials.h)
+    // every built-in material, from the one list (BuiltinMaterials.h): the one-line description
+    // (--list), then the energy in full (--describe prints every line)
     forEachBuiltinMaterial([&](auto* tag) {
         using M = std::decay_t<decltype(*tag)>;
-        r.add<M>(M::kName, M::kDescription);
+        r.add<M>(M::kName, std::string(M::kDescription) + "\n" + M::kEnergy);
     });
 }
 

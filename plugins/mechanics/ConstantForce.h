@@ -1,9 +1,11 @@
 #pragma once
 #include "NodeSelection.h"
+#include "fascia/sim/LoadCurve.h"
 
 namespace fascia::mechanics {
 
-/// A constant force on nodes: `force` on each node, or `totalForce` shared equally among them.
+/// A force on nodes: `force` on each node, or `totalForce` shared equally among them, scaled by
+/// a load curve: F(t) = c(t) F (constant when no curve is given).
 class ConstantForce : public core::BaseForceField {
 public:
     void init() override;
@@ -13,10 +15,12 @@ public:
     NodeSelection m_select{this};
     core::Param<Vec3> m_force{this, core::ParamSpec("force").unit("N").help("force applied to each selected node")};
     core::Param<Vec3> m_totalForce{this, core::ParamSpec("totalForce").unit("N").help("total force, shared equally by the selected nodes")};
+    core::CurveParam m_curve{this, core::curveSpec("curve", "the force, F(t) = c(t) F")};
 
 private:
     IndexList m_nodes;
     Vec3 m_perNode = Vec3::Zero();
+    double m_scale = 1.0;  ///< c(t) at the last addForce (the energy's load)
 };
 
 } // namespace fascia::mechanics

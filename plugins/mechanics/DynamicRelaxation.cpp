@@ -85,9 +85,10 @@ double DynamicRelaxation::loadNorm(core::MechanicalGroup& g, StateData& d, doubl
     const size_t n = s.size();
     d.scratch.assign(n, Vec3::Zero());
     const bool haveExt = s.externalForce().size() == n;
+    const Vec3 gravity = (g.gravityCurve ? g.gravityCurve->value(t) : 1.0) * g.gravity;
     for (size_t i = 0; i < n; ++i) {
         if (haveExt) d.scratch[i] += s.externalForce()[i];
-        if (i < g.mass.size()) d.scratch[i] += g.mass[i] * g.gravity;
+        if (i < g.mass.size()) d.scratch[i] += g.mass[i] * gravity;
     }
     for (auto* ff : g.forceFields)
         if (ff->elementCount() == 0) ff->addForce(s, d.scratch, t);

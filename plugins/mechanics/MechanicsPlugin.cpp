@@ -6,6 +6,7 @@
 #include "DynamicRelaxation.h"
 #include "ExplicitEuler.h"
 #include "FixedConstraint.h"
+#include "LoadCurve.h"
 #include "LumpedMass.h"
 #include "MechanicalObject.h"
 #include "PrescribedDisplacement.h"
@@ -23,8 +24,9 @@ static void registerMechanics(fascia::core::Registry& r) {
     r.add<DynamicRelaxation>("DynamicRelaxation", "static solver: adaptive dynamic relaxation, one load step per step (Joldes, Wittek and Miller 2009)");
     r.add<FixedConstraint>("FixedConstraint", "fixes nodes in all or some directions (rollers, symmetry planes)");
     r.add<PrescribedDisplacement>("PrescribedDisplacement", "nodes follow a displacement times a load shape over time");
-    r.add<ConstantForce>("ConstantForce", "a constant force on nodes");
-    r.add<SurfacePressure>("SurfacePressure", "a follower pressure on boundary triangles");
+    r.add<ConstantForce>("ConstantForce", "a force on nodes, constant or scaled by a load curve");
+    r.add<SurfacePressure>("SurfacePressure", "a follower pressure on boundary triangles and hexahedral faces");
+    r.add<LoadCurve>("LoadCurve", "a load curve c(t) (tabulated, linear or smooth) that loads link to scale their value");
 }
 
 FASCIA_PLUGIN("fascia.mechanics", "0.1.0", "state, mass, integrators, constraints and loads", registerMechanics)

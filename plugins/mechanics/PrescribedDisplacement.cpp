@@ -1,40 +1,29 @@
 #include "PrescribedDisplacement.h"
 
-#include <algorithm>
-
 namespace fascia::mechanics {
 
 void PrescribedDisplacement::init() {
+    using C = core::Curve;
+    if (m_curve.isSet())
+        for (const core::BaseParam* p : {static_cast<const core::BaseParam*>(&m_shape), static_cast<const core::BaseParam*>(&m_rampTime),
+                                         static_cast<const core::BaseParam*>(&m_startTime)})
+            if (p->isSet())
+                fail(*p, "give curve or shape, rampTime and startTime, not both (the curve holds the shape and its times)");
     const std::string& k = m_shape.get();
-    m_kind = k == "ramp" ? 0 : k == "rampHold" ? 1 : k == "smooth" ? 2 : 3;
+    const double s = m_startTime.get(), T = m_rampTime.get();
+    if (k == "step") C::make({s, 0.0, s, 1.0}, C::Interpolation::Linear, C::After::Hold, m_shapeCurve);
+    else
+        C::make({s, 0.0, s + T, 1.0}, k == "smooth" ? C::Interpolation::Smooth : C::Interpolation::Linear,
+                k == "ramp" ? C::After::Extend : C::After::Hold, m_shapeCurve);
     AxisConstraint::init();  // projects the state at t = 0
 }
 
 double PrescribedDisplacement::shape(double t) const {
-    const double tau = t - m_startTime.get();
-    if (tau <= 0) return 0;
-    const double r = tau / m_rampTime.get();
-    switch (m_kind) {
-    case 0: return r;
-    case 1: return std::min(r, 1.0);
-    case 2: {
-        const double q = std::min(r, 1.0);
-        return q * q * q * (10 - 15 * q + 6 * q * q);
-    }
-    default: return 1;
-    }
+    return m_curve.isSet() ? m_curve.value(t) : m_shapeCurve.value(t);
 }
 
 double PrescribedDisplacement::shapeRate(double t) const {
-    const double tau = t - m_startTime.get();
-    if (tau <= 0) return 0;
-    const double T = m_rampTime.get(), r = tau / T;
-    switch (m_kind) {
-    case 0: return 1 / T;
-    case 1: return r < 1 ? 1 / T : 0;
-    case 2: return r < 1 ? 30 * r * r * (1 - r) * (1 - r) / T : 0;
-    default: return 0;
-    }
+    return m_curve.isSet() ? m_curve.rate(t) : m_shapeCurve.rate(t);
 }
 
 } // namespace fascia::mechanics

@@ -1,6 +1,7 @@
 #include "SemiImplicitEuler.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fascia::mechanics {
 
@@ -23,6 +24,13 @@ void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
         x += dt * v;                            // HEML eq. (32), second line
     });
     g.projectState(t + dt);
+}
+
+double SemiImplicitEuler::stableTimeStep(double critical, std::string&) const {
+    const double alpha = m_damping.get();
+    if (alpha == 0.0) return critical;
+    const double omega = 2.0 / critical;  // 0 when no force field limits the step
+    return 4.0 / (alpha + std::sqrt(alpha * alpha + 4.0 * omega * omega));
 }
 
 } // namespace fascia::mechanics

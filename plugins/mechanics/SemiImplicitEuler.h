@@ -15,9 +15,17 @@ namespace fascia::mechanics {
 /// Note that with halfStepStart the velocities the state holds (and exporters write) are the
 /// leapfrog's mid-step velocities v(t - dt/2), as in every staggered scheme. After a change of dt the
 /// first kick spans (dt_old + dt)/2, from v(t - dt_old/2) to v(t + dt/2).
+///
+/// Stability: on an oscillator of frequency omega with damping alpha one step has the characteristic
+/// polynomial z^2 - (2 - alpha dt - omega^2 dt^2) z + (1 - alpha dt), stable (Jury conditions) iff
+/// alpha dt < 2 and 4 - 2 alpha dt - omega^2 dt^2 > 0, i.e. dt < 4 / (alpha + sqrt(alpha^2 + 4 omega^2)):
+/// 2 / omega without damping (central difference's limit), smaller with it.
 class SemiImplicitEuler : public DampedIntegrator {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
+    /// 4 / (alpha + sqrt(alpha^2 + 4 omega_max^2)) with omega_max = 2 / critical; critical itself
+    /// without damping.
+    double stableTimeStep(double critical, std::string& why) const override;
 
     core::Param<bool> m_halfStepStart{this, core::ParamSpec("halfStepStart").help("first velocity update over dt/2 (leapfrog start: second-order positions; velocities are then mid-step values)"), true};
 

@@ -7,6 +7,14 @@ namespace fascia::meshio {
 /// Node groups: xmin, xmax, ymin, ymax, zmin, zmax (the six faces).
 class GridMesh : public MeshSource {
 public:
+    /// How makeGrid numbers nodes and cells (for --describe).
+    static constexpr const char* kNumbering =
+        "node numbering: with resolution \"nx ny nz\", node (i, j, k), 0 <= i <= nx, 0 <= j <= ny, 0 <= k <= nz, at "
+        "min + (i/nx, j/ny, k/nz) (max - min), has index i + (nx + 1) (j + (ny + 1) k): x fastest, then y, then z; node 0 "
+        "is at min, node (nx + 1)(ny + 1)(nz + 1) - 1 at max. Cells (i, j, k) in the same order; a hexahedron's corners in "
+        "VTK order (i,j,k) (i+1,j,k) (i+1,j+1,k) (i,j+1,k), then the same at k+1; tetrahedra6: six per cell around the "
+        "diagonal from corner 0 to corner 6; tetrahedra5: five per cell, the split alternating with the parity of i + j + k. "
+        "Node groups xmin xmax ymin ymax zmin zmax: the nodes of each face, in index order";
     void init() override;
 
     core::Param<Vec3> m_min{this, core::ParamSpec("min").unit("m").help("lower corner of the box"), Vec3(0, 0, 0)};

@@ -13,7 +13,8 @@ using namespace fascia::meshio;
 
 static void registerMeshio(fascia::core::Registry& r) {
     r.add<MeshLoader>("MeshLoader", "reads a volume mesh: Gmsh .msh (1, 2.2, 4.1), VTK .vtk/.vtu, TetGen .node/.ele");
-    r.add<GridMesh>("GridMesh", "a box split into hexahedra or tetrahedra, with its six faces as node groups");
+    r.add<GridMesh>("GridMesh", std::string("a box split into hexahedra or tetrahedra, with its six faces as node groups\n") +
+                                    GridMesh::kNumbering);
     r.add<BoxROI>("BoxROI", "the nodes and elements inside a box, as index lists");
 #if FASCIA_MESHIO_WITH_VTK  // a build without VTK (FASCIA_WITH_VTK=OFF) has no VTKExporter
     r.add<VTKExporter>("VTKExporter", "ParaView time series (.pvd + .vtu): displacement, velocity, force, cell data");

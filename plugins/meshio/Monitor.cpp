@@ -84,6 +84,22 @@ void Monitor::init() {
     }
     if (m_reactionOf.get())
         for (int a = 0; a < 3; ++a) h << ",reaction_" << axis[a] << " [N]";
+    // the masses and the element force fields acting on the state, for the energies
+    m_masses.clear();
+    m_energyFields.clear();
+    node()->root()->visit([&](const core::Node& n) {
+        if (n.findInContext<core::BaseMechanicalState>() != m_st) return;
+        for (auto* m : n.findAllLocal<core::BaseMass>()) m_masses.push_back(m);
+        for (auto* ff : n.findAllLocal<core::BaseForceField>())
+            if (ff->elementCount() > 0) m_energyFields.push_back(ff);
+    });
+    if (m_kineticEnergy.get() && m_masses.empty())
+        fail(m_kineticEnergy, "kineticEnergy needs the masses, but no mass acts on the state '" + m_st->name() + "'");
+    if (m_strainEnergy.get() && m_energyFields.empty())
+        fail(m_strainEnergy, "strainEnergy needs an element force field, but none acts on the state '" + m_st->name() + "'");
+    if (m_kineticEnergy.get()) h << ",kineticEnergy [J]";
+    if (m_strainEnergy.get()) h << ",strainEnergy [J]";
+    if (m_residual.get()) h << ",residual [N]";
     std::vector<core::CellField> fields;
     if (!m_cellFields.empty()) m_ff->cellData(*m_st, fields);
     for (int e : m_elements.get())
@@ -112,8 +128,16 @@ void Monitor::init() {
         fail(m_filename, "cannot write '" + m_path + "'");
 }
 
+void Monitor::observeFinal(double t, long step) {
+    if (step != m_lastStep) writeRow(t, step);
+}
+
 void Monitor::observe(double t, long step) {
-    if (step % m_every.get() != 0) return;
+    if (step % m_every.get() == 0) writeRow(t, step);
+}
+
+void Monitor::writeRow(double t, long step) {
+    m_lastStep = step;
     if (!m_out) {
         std::error_code ec;
         fs::create_directories(fs::path(m_path).parent_path(), ec);
@@ -138,6 +162,26 @@ void Monitor::observe(double t, long step) {
             for (int a = 0; a < 3; ++a)
                 if (axes[a]) sum[a] += m_st->reaction()[i][a];
         row << "," << sum[0] << "," << sum[1] << "," << sum[2];
+    }
+    if (m_kineticEnergy.get()) {
+        double e = 0;  // in node order
+        for (auto* m : m_masses) {
+            const auto& mm = m->nodalMasses();
+            for (size_t i = 0; i < mm.size() && i < m_st->size(); ++i) e += 0.5 * mm[i] * m_st->v()[i].squaredNorm();
+        }
+        row << "," << e;
+    }
+    if (m_strainEnergy.get()) {
+        double e = 0;
+        for (auto* ff : m_energyFields) e += ff->potentialEnergy(*m_st);
+        row << "," << e;
+    }
+    if (m_residual.get()) {
+        double r = std::nan("");  // a state without an integrator is in no group: no forces to speak of
+        if (auto* groups = node()->context().groups)
+            for (auto& g : *groups)
+                if (g.state == m_st) r = g.residualNorm(t);
+        row << "," << r;
     }
     if (!m_cellFields.empty()) {
         std::vector<core::CellField> fields;

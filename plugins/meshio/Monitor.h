@@ -11,10 +11,17 @@ namespace fascia::meshio {
 /// The first row names every column with its unit: `time [s],u12_x [m],...`. Reactions are those
 /// of the step just computed: the forces at the start of the step (time t - dt), as explicit
 /// integration has them.
+/// Opt-in columns show when a run has settled, each for the whole state: the kinetic energy
+/// 1/2 sum_i m_i |v_i|^2 (the masses of the state's context), the strain energy (the sum of the
+/// potentialEnergy() of the element force fields acting on the state), and the residual, the norm
+/// of the free nodal forces |f| at the recorded positions and time (every force, gravity and load,
+/// with the constrained components removed: 0 at a static equilibrium; one more force evaluation
+/// per row). The final state of a run is recorded whatever `every`.
 class Monitor : public core::BaseObserver {
 public:
     void init() override;
     void observe(double t, long step) override;
+    void observeFinal(double t, long step) override;
     void cleanup() override;
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("CSV file, relative to the output folder (default: <name>.csv)")};
@@ -27,10 +34,14 @@ public:
     core::Param<IndexList> m_elements{this, core::ParamSpec("elements").help("elements to record the force field's element quantities of")};
     core::Param<std::string> m_elementFields{this, core::ParamSpec("elementFields").help("names of the element quantities, space separated (e.g. \"J vonMises\"); default: all the force field offers")};
     core::Link<core::BaseForceField> m_forceField{this, core::ParamSpec("forceField").help("the force field giving element quantities (default: the first element force field in the context)")};
-    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("record every N steps"), 1};
+    core::Param<bool> m_kineticEnergy{this, core::ParamSpec("kineticEnergy").help("record the state's kinetic energy 1/2 sum m v^2 (J)"), false};
+    core::Param<bool> m_strainEnergy{this, core::ParamSpec("strainEnergy").help("record the strain energy of the element force fields acting on the state (J)"), false};
+    core::Param<bool> m_residual{this, core::ParamSpec("residual").help("record the residual: the norm of the free (unconstrained) nodal forces at the recorded state (N), 0 at equilibrium"), false};
+    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("record every N steps (the initial and the final state are always recorded)"), 1};
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to record (default: the one in the context)")};
 
 private:
+    void writeRow(double t, long step);
     core::BaseMechanicalState* m_st = nullptr;
     IndexList m_nodes;
     core::BaseForceField* m_ff = nullptr;
@@ -38,6 +49,9 @@ private:
     std::unique_ptr<std::ofstream> m_out;
     std::string m_path;
     std::string m_header;  ///< the CSV header line, written when the file is created
+    std::vector<core::BaseMass*> m_masses;             ///< for the kinetic energy
+    std::vector<core::BaseForceField*> m_energyFields; ///< for the strain energy
+    long m_lastStep = -1;  ///< the step of the last row
 };
 
 } // namespace fascia::meshio

@@ -63,6 +63,7 @@ void VTKExporter::init() {
     m_written.clear();
     m_listed = 0;
     m_lastCollection = 0;
+    m_lastStep = -1;
 }
 
 void VTKExporter::observe(double t, long step) {
@@ -70,7 +71,12 @@ void VTKExporter::observe(double t, long step) {
     writeStep(t, step);
 }
 
+void VTKExporter::observeFinal(double t, long step) {
+    if (step != m_lastStep) writeStep(t, step);
+}
+
 void VTKExporter::writeStep(double t, long step) {
+    m_lastStep = step;
     const std::string dir = node()->context().outputDir;
     char suffix[32];
     std::snprintf(suffix, sizeof suffix, "_%06ld.vtu", step);

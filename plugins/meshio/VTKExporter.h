@@ -20,10 +20,12 @@ class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
     void observe(double t, long step) override;
+    /// The final state of the run, when `every` skipped it.
+    void observeFinal(double t, long step) override;
     void cleanup() override;
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("base name of the files, relative to the output folder (default: the component's name)")};
-    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write every N steps (the initial state is always written)"), 1};
+    core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write every N steps (the initial and the final state are always written)"), 1};
     core::Param<std::string> m_compression{this, core::ParamSpec("compression").choices({"lz4", "zlib", "none"}).help(
         "compression of the data in the .vtu files: lz4 (fast; ParaView 5.5 and later), zlib (smaller, about 10 "
         "times slower to write) or none"), "lz4"};
@@ -39,6 +41,7 @@ private:
     std::string m_base;
     size_t m_listed = 0;  ///< files listed in the .pvd on disk
     double m_lastCollection = 0;  ///< wall time (s) of its last rewrite
+    long m_lastStep = -1;         ///< the step of the last file written
 };
 
 /// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).

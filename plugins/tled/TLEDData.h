@@ -98,6 +98,10 @@ struct TLEDForceField::Impl {
         const void* law = nullptr;  ///< the inlined law, when the material is a built-in one
         KernelFn fn = nullptr;
         double a0[3] = {1, 0, 0}, b0[3] = {0, 1, 0};  ///< fibre directions when not given per element
+        /// s of s ln J moved from the isochoric to the volumetric part of S (s C^-1) on the viscous
+        /// paths, so that each part a series relaxes alone is stress-free at rest
+        /// (materials/RelaxationSplit.h); 0 when no series relaxes one part alone
+        double restShift = 0;
     };
     bool fibresPerElement = false;  ///< a fibre array gives the directions (ElementSet::a0, b0), else Group::a0, b0
     ElementSet<4> tet;

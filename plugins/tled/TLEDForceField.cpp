@@ -7,6 +7,7 @@
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/Tensor3.h"
 #include "fascia/scene/Node.h"
+#include "fascia/materials/RelaxationSplit.h"
 #include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <algorithm>
@@ -106,6 +107,18 @@ void TLEDForceField::init() {
         vs.Ycur.assign(n, 0.0);
         stateBytes += 2 * n * sizeof(double);
         im.visco.push_back(std::move(vs));
+    }
+    // each part that relaxes must be stress-free at rest, or a body at rest creeps (RelaxationSplit.h)
+    bool onePartAlone = false;
+    for (const ViscoSet& vs : im.visco) onePartAlone |= vs.iso != vs.vol;
+    for (auto& g : im.groups) {
+        const materials::RelaxationSplit split = materials::relaxationSplit(*g.material, im.J0);
+        for (const ViscoSet& vs : im.visco) {
+            const std::string err = materials::relaxationRestError(split, vs.iso, vs.vol, g.material->className() + " '" +
+                                                                                              g.material->name() + "'");
+            if (!err.empty()) vs.prony->failApply(err);
+        }
+        g.restShift = onePartAlone ? split.shift : 0.0;
     }
     // states beyond a quarter of a typical L3 (32 MiB here) are written with streaming stores: they
     // are read once per step and would only evict the element data (docs/performance.md)

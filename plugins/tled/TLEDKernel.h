@@ -117,6 +117,19 @@ FASCIA_INLINE void elasticStress(Batch<NN>& s, int n, const Fibres& fib) {
         s.P.set(k, firstPiola<i2, i4, i6>(s.F.get(k), s.I1[k], s.r.coefficients(k), fib.a(k), fib.b(k)));
 }
 
+/// Moves s ln J from the isochoric to the volumetric part of the response (dJiso -= s/J, dJvol +=
+/// s/J, their sum unchanged), so that each part a series relaxes is stress-free at rest
+/// (materials/RelaxationSplit.h). max(J0, J) keeps unused lanes finite.
+template <int NN>
+FASCIA_INLINE void restSplit(Batch<NN>& s, int n, double shift, double J0) {
+#pragma omp simd
+    for (int k = 0; k < n; ++k) {
+        const double q = shift / std::max(J0, s.J[k]);
+        s.r.dJi[k] -= q;
+        s.r.dJv[k] += q;
+    }
+}
+
 /// S of TLED eq. (10) in its isochoric and volumetric parts (Tensor3.h secondPiola).
 template <unsigned U, int NN>
 FASCIA_INLINE void splitStress(const Batch<NN>& s, int k, const Fibres& fib, Sym33<double>& Si, Sym33<double>& Sv) {
@@ -379,15 +392,18 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
         gradientAndInvariants<NN, U>(s, n, G, fib);
         eval(s, n);
         if (one) {
+            if (grp.restShift != 0.0) restSplit(s, n, grp.restShift, im.J0);
             const bool stream = io.streamY && n == kBatch;
             double* Yn = stream ? s.Y6[0] : io.Ynew[0] + batch * 6 * kBatch;
             viscousStressOneTerm<NN, U>(s, n, fib, *one, io.Yhist[0] + batch * 6 * kBatch, Yn);
             if (stream) simd::streamCopy(io.Ynew[0] + batch * 6 * kBatch, s.Y6[0], 6 * kBatch);
         } else if (viscoP) {
+            if (grp.restShift != 0.0) restSplit(s, n, grp.restShift, im.J0);
             viscousStress<NN, U>(s, n, fib, im, io, batch);
         } else if (!needS) {
             elasticStress<NN, U>(s, n, fib);
         } else {
+            if (grp.restShift != 0.0) restSplit(s, n, grp.restShift, im.J0);
             stressOutput<NN, U>(s, n, fib, im, es, io, e0, batch, NN == 4 ? 0 : im.nTetCells);
         }
         if (io.energy) addEnergy(s, n, es, e0, energy);

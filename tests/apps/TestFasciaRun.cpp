@@ -132,7 +132,7 @@ TEST_CASE("fascia-run runs a good scene and prints the summary line", "[fascia-r
     CHECK(r.err.empty());  // not a terminal: no progress bar
 }
 
-TEST_CASE("fascia-run --time runs ceil(T/dt) steps", "[fascia-run]") {
+TEST_CASE("fascia-run --time runs ceil(T/dt) steps and ends on T exactly, the last step shortened", "[fascia-run]") {
     Workspace w;
     w.write("good.xml", scene("dt=\"0.01\""));
     auto r = w.run("good.xml --time 0.05");
@@ -143,8 +143,29 @@ TEST_CASE("fascia-run --time runs ceil(T/dt) steps", "[fascia-run]") {
     CHECK(s.steps == 5);
     CHECK(s.simulated == Approx(0.05));
     auto r2 = w.run("good.xml --time 0.041");
+    INFO(r2.out << r2.err);
     REQUIRE(parseSummary(r2.summary(), s));
     CHECK(s.steps == 5);
+    CHECK(s.simulated == 0.041);  // printed to 6 digits: 0.05 before (ceil(T/dt) dt)
+    // endTime the same way
+    w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.0234\""));
+    auto r3 = w.run("end.xml");
+    REQUIRE(parseSummary(r3.summary(), s));
+    CHECK(s.steps == 3);
+    CHECK(s.simulated == 0.0234);
+}
+
+TEST_CASE("fascia-run refuses a dt larger than the end time with a located error", "[fascia-run]") {
+    Workspace w;
+    w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.004\""));
+    auto r = w.run("end.xml");
+    CHECK(r.code == 2);
+    CHECK_THAT(r.firstErrLine(), Contains("end.xml:1: error: Node 'root': dt = 0.01 s is larger than the time to run, 0.004 s "
+                                          "(end time 0.004 s): not even one step fits"));
+    auto r2 = w.run("end.xml --time 0.002 --dt 0.005");
+    CHECK(r2.code == 2);
+    CHECK_THAT(r2.firstErrLine(), Contains("dt = 0.005 s is larger than the time to run, 0.002 s"));
+    CHECK(w.run("end.xml --time 0.01").code == 0);  // one whole step fits
 }
 
 TEST_CASE("fascia-run without --steps or --time runs to the root's endTime, else 100 steps", "[fascia-run]") {
@@ -310,6 +331,34 @@ TEST_CASE("fascia-run --describe prints a component's parameters", "[fascia-run]
     auto bad = w.run("--describe TestCountr", env);
     CHECK(bad.code == 2);
     CHECK_THAT(bad.err, Contains("did you mean 'TestCounter'?"));
+}
+
+TEST_CASE("fascia-run --describe of every law prints its energy in full and --list its one-line summary", "[fascia-run]") {
+    Workspace w;
+    auto list = w.run("--list");
+    REQUIRE(list.code == 0);
+    // the laws: the components of the materials plugin
+    std::vector<std::string> laws;
+    std::istringstream in(list.out);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream words(line);
+        std::string name, plugin;
+        words >> name >> plugin;
+        if (plugin == "fascia.materials") laws.push_back(name);
+    }
+    CHECK(laws.size() >= 11);
+    for (const std::string& law : laws) {
+        CAPTURE(law);
+        auto r = w.run("--describe " + law);
+        CHECK(r.code == 0);
+        // line 1: "<Law> (plugin fascia.materials): summary", line 2: the energy
+        const size_t eol = r.out.find('\n');
+        REQUIRE(eol != std::string::npos);
+        CHECK_THAT(r.out.substr(eol + 1, 4), Contains("W = "));
+        CHECK_THAT(list.out, !Contains("W = "));  // --list keeps to the first line
+    }
+    auto grid = w.run("--describe GridMesh");
+    CHECK_THAT(grid.out, Contains("node numbering:") && Contains("has index i + (nx + 1) (j + (ny + 1) k)"));
 }
 
 TEST_CASE("fascia-run --timers prints the time of each component", "[fascia-run]") {

@@ -211,8 +211,9 @@ TEST_CASE("DynamicRelaxation shrinks a cube under follower pressure to the volum
           "[DynamicRelaxation][SurfacePressure]") {
     // F = s I: the isochoric part carries no stress, sigma = kappa (J - 1) I = -p I, so J = 1 - p/kappa
     const double p = GENERATE(500.0, 1500.0);
-    CAPTURE(p);
-    auto sim = Simulation::fromString(pressureScene("tetrahedra6", p, kSolver));
+    const std::string element = GENERATE(as<std::string>{}, "tetrahedra6", "hexahedra");
+    CAPTURE(p, element);
+    auto sim = Simulation::fromString(pressureScene(element, p, kSolver));
     sim->step();
     const auto& rep = solver(*sim).reports().at(0);
     CAPTURE(rep.iterations, rep.residual, rep.rate);

@@ -151,3 +151,100 @@ TEST_CASE("an unstable run fails with a simulation error naming the step", "[Sim
         CHECK_THAT(std::string(e.what()), Contains("step ") && Contains("non-finite"));
     }
 }
+
+namespace {
+/// The cube of cube() held at z = 0 and loaded on z = 0.1 (0.05 N in all), with an integrator and
+/// its damping alpha (1/s).
+std::string loadedCube(const std::string& dt, const std::string& integrator, double alpha) {
+    std::ostringstream a;
+    a.precision(17);
+    a << alpha;
+    return "<Node name=\"root\" dt=\"" + dt + "\" dtSafety=\"0.5\">\n"
+           "  <GridMesh min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"4 4 4\"/>\n"
+           "  <MechanicalObject name=\"state\"/>\n  <LumpedMass density=\"1000\"/>\n"
+           "  <CompressibleNeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n"
+           "  <HEMLForceField name=\"ff\"/>\n"
+           "  <" + integrator + " name=\"integrator\" damping=\"" + a.str() + "\"/>\n"
+           "  <FixedConstraint group=\"zmin\"/>\n"
+           "  <ConstantForce group=\"zmax\" totalForce=\"0 0 -0.05\"/>\n"
+           "</Node>\n";
+}
+
+/// The largest |x - x0| (m) over `steps` steps from a slightly perturbed state (every mode excited);
+/// infinity when the run blows up (a non-finite state, or beyond 1 m).
+double maxDisplacement(Simulation& sim, int steps) {
+    auto& s = sim.state("state");
+    perturb(s, 1e-7);
+    double worst = 0;
+    try {
+        for (int i = 0; i < steps && worst < 1.0; ++i) {
+            sim.step();
+            for (size_t k = 0; k < s.size(); ++k) worst = std::max(worst, (s.x()[k] - s.x0()[k]).norm());
+        }
+    } catch (const fascia::core::Error&) {
+        return std::numeric_limits<double>::infinity();
+    }
+    return worst < 1.0 ? worst : std::numeric_limits<double>::infinity();
+}
+} // namespace
+
+TEST_CASE("dt=auto fits each integrator and its damping and the loaded cube runs stable with it",
+          "[Simulation][ExplicitEuler][SemiImplicitEuler][CentralDifference][verification]") {
+    // Stability limits on x'' + alpha x' + omega^2 x = 0 (Jury conditions on each scheme's
+    // characteristic polynomial, derived in ExplicitEuler.h, SemiImplicitEuler.h, CentralDifference.h),
+    // with omega_max = 2 / dt_crit (dt_crit the force field's critical step):
+    //   CentralDifference  dt < 2 / omega_max, any damping;
+    //   SemiImplicitEuler  dt < 4 / (alpha + sqrt(alpha^2 + 4 omega_max^2));
+    //   ExplicitEuler      dt < min(2 / alpha, alpha / omega_max^2), none without damping.
+    // Each case runs at dt="auto" (stable: the static displacement is ~2e-4 m) and at 4 times it, which
+    // must blow up where the integrator's own limit is below the critical step (a dt="auto" that
+    // ignored the integrator would be that unstable one for light or heavy damping).
+    struct Case {
+        const char* integrator;
+        double alphaCrit;  ///< alpha dt_crit
+        double expected;   ///< dt / dt_crit before dtSafety
+    };
+    const double w = 2.0;  // omega_max dt_crit
+    const Case cases[] = {
+        {"CentralDifference", 0.0, 1.0},
+        {"CentralDifference", 20.0, 1.0},
+        {"SemiImplicitEuler", 0.0, 1.0},
+        {"SemiImplicitEuler", 20.0, 4.0 / (20.0 + std::sqrt(400.0 + 4 * w * w))},
+        {"ExplicitEuler", 0.2, std::min(2.0 / 0.2, 0.2 / (w * w))},
+        {"ExplicitEuler", 20.0, std::min(2.0 / 20.0, 20.0 / (w * w))},
+    };
+    const double crit = Simulation::fromString(loadedCube("auto", "CentralDifference", 0.0))->criticalTimeStep();
+    for (const Case& c : cases) {
+        const double alpha = c.alphaCrit / crit;
+        CAPTURE(c.integrator, c.alphaCrit, crit);
+        auto sim = Simulation::fromString(loadedCube("auto", c.integrator, alpha), "scene.xml");
+        CHECK(sim->dt() == Approx(0.5 * c.expected * crit).epsilon(1e-12));
+        const double stable = maxDisplacement(*sim, 3000);
+        CAPTURE(sim->dt(), stable);
+        CHECK(stable < 1e-3);
+        if (c.expected < 1.0) {
+            CaptureCerr quiet;  // the warning about a dt above the integrator's stable step
+            auto fast = Simulation::fromString(loadedCube("auto", c.integrator, alpha), "scene.xml");
+            fast->setDt(4.0 * sim->dt());
+            CHECK_THAT(quiet.out.str(), Contains("warning: " + std::string(c.integrator) + " 'integrator': dt = ") &&
+                                            Contains("is above its stable time step"));
+            CHECK(maxDisplacement(*fast, 3000) == std::numeric_limits<double>::infinity());
+        }
+    }
+}
+
+TEST_CASE("dt=auto with an undamped ExplicitEuler is a located error that says why and what to do", "[ExplicitEuler]") {
+    try {
+        Simulation::fromString(loadedCube("auto", "ExplicitEuler", 0.0), "scene.xml");
+        FAIL("no error");
+    } catch (const fascia::core::Error& e) {
+        CHECK(e.kind() == fascia::core::ErrorKind::Input);
+        CHECK_THAT(std::string(e.what()), Contains("scene.xml:7: error: ExplicitEuler 'integrator': dt=\"auto\" finds no stable time step") &&
+                                              Contains("whatever the time step") && Contains("give damping > 0") &&
+                                              Contains("SemiImplicitEuler or CentralDifference"));
+    }
+    // a dt given by hand runs, with a warning that no step is stable
+    CaptureCerr cap;
+    auto sim = Simulation::fromString(loadedCube("1e-4", "ExplicitEuler", 0.0), "scene.xml");
+    CHECK_THAT(cap.out.str(), Contains("scene.xml:7: warning: ExplicitEuler 'integrator': no time step is stable"));
+}

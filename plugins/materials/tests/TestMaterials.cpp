@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <utility>
 
 using namespace fascia;
 using namespace fascia::materials;
@@ -294,4 +295,68 @@ TEST_CASE("moduli given both ways, neither way or half way are located errors", 
         m.m_dir.set(Vec3::Zero());
         CHECK_THROWS_WITH(m.init(), Catch::Contains("non-zero"));
     }
+}
+
+namespace {
+/// S11 and S22 (= S33) of a law under F = diag(a, l, l), from its derivatives (Material.h, Response):
+/// S = 2 [dI1 I + dI2 (I1 I - C)] + J dW/dJ C^-1.
+std::pair<double, double> uniaxialS(const BaseMaterial& m, double a, double l) {
+    const Mat3 F = Vec3(a, l, l).asDiagonal();
+    const auto in = conf::invariantsOf(F);
+    const auto r = conf::evaluateOne(m, in, 0.4);
+    const double dJ = r.dJiso + r.dJvol;
+    return {2 * (r.dI1 + r.dI2 * (in.I1 - a * a)) + in.J * dJ / (a * a),
+            2 * (r.dI1 + r.dI2 * (in.I1 - l * l)) + in.J * dJ / (l * l)};
+}
+/// The root of f in [lo, hi] by bisection (f changes sign there).
+template <class Fn>
+double bisect(Fn f, double lo, double hi) {
+    const bool up = f(hi) > 0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        ((f(mid) > 0) == up ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+/// The lateral stretch of uniaxial stress (S22 = 0) at axial stretch a.
+double lateral(const BaseMaterial& m, double a) {
+    return bisect([&](double l) { return uniaxialS(m, a, l).second; }, 0.3, 1.0);
+}
+/// The axial stretch at nominal stress P11 = a S11 = P.
+double stretchAt(const BaseMaterial& m, double P) {
+    return bisect([&](double a) { return a * uniaxialS(m, a, lateral(m, a)).first - P; }, 1.0, 3.0);
+}
+} // namespace
+
+TEST_CASE("docs/materials.md's neo-Hookean figures: NeoHookean and CompressibleNeoHookean part by 2 per cent in uniaxial stress",
+          "[NeoHookean][CompressibleNeoHookean]") {
+    // E = 1 Pa, nu = 0.3 for both (docs/materials.md, section 2); closed forms of the lateral stress:
+    //   CompressibleNeoHookean: sigma22 J = mu (l^2 - 1) + lambda ln J
+    //   NeoHookean:             sigma22 = mu J^(-5/3) (l^2 - I1/3) + kappa (J - 1),  J = a l^2, I1 = a^2 + 2 l^2
+    auto make = [](const std::string& name) {
+        auto m = createBuiltinMaterial(name);
+        m->findParam("youngModulus")->read("1", {});
+        m->findParam("poissonRatio")->read("0.3", {});
+        m->init();
+        return m;
+    };
+    const auto cnh = make("CompressibleNeoHookean"), nh = make("NeoHookean");
+    const double E = 1, nu = 0.3, mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), kappa = lambda + 2 * mu / 3;
+    const double a = 2.0;
+    const double lc = lateral(*cnh, a), ln = lateral(*nh, a);
+    const double lcClosed = bisect([&](double l) { return mu * (l * l - 1) + lambda * std::log(a * l * l); }, 0.3, 1.0);
+    const double lnClosed = bisect([&](double l) {
+        const double J = a * l * l, I1 = a * a + 2 * l * l;
+        return mu * std::pow(J, -5.0 / 3.0) * (l * l - I1 / 3) + kappa * (J - 1);
+    }, 0.3, 1.0);
+    CHECK(lc == Approx(lcClosed).epsilon(1e-12));
+    CHECK(ln == Approx(lnClosed).epsilon(1e-12));
+    // the figures as printed in the doc (5 digits)
+    CHECK(std::abs(lc - 0.79808) < 5e-6);
+    CHECK(std::abs(ln - 0.81314) < 5e-6);
+    CHECK(std::abs((ln - lc) / lc - 0.019) < 5e-4);
+    const double sc = stretchAt(*cnh, 0.25), sn = stretchAt(*nh, 0.25);
+    CHECK(std::abs(sc - 1.30215) < 5e-6);
+    CHECK(std::abs(sn - 1.33164) < 5e-6);
+    CHECK(std::abs((sn - sc) / sc - 0.023) < 5e-4);
 }

@@ -139,3 +139,43 @@ TEST_CASE("DynamicRelaxation on a state with no elastic force field is a simulat
         CHECK_THAT(e.what(), Contains("[/root/dr] step 1: the state 'mo' shows no stiffness"));
     }
 }
+
+TEST_CASE("A FixedConstraint and a PrescribedDisplacement on one node and axis are a located error naming both",
+          "[FixedConstraint][PrescribedDisplacement]") {
+    // grid(): faces zmin (nodes 0-3) and xmin (nodes 0 2 4 6) share nodes 0 and 2
+    SECTION("the same face, all axes") {
+        CHECK_THAT(errorOf(grid("<FixedConstraint name=\"base\" group=\"zmin\"/>\n"
+                                "  <PrescribedDisplacement name=\"pull\" group=\"zmin\" displacement=\"0 0 0.01\"/>")),
+                   Contains("scene.xml:7: error: PrescribedDisplacement 'pull': node 0 axis x is also constrained by "
+                            "FixedConstraint '/root/base' (scene.xml:6), and this one prescribes its motion") &&
+                       Contains("note: remove the node from one of them, or let them hold different axes"));
+    }
+    SECTION("the fixed one second, on a shared edge and one axis") {
+        CHECK_THAT(errorOf(grid("<PrescribedDisplacement name=\"pull\" group=\"xmin\" displacement=\"0 0 0.01\" directions=\"0 0 1\"/>\n"
+                                "  <FixedConstraint name=\"base\" group=\"zmin\" directions=\"0 0 1\"/>")),
+                   Contains("scene.xml:7: error: FixedConstraint 'base': node 0 axis z is also constrained by "
+                            "PrescribedDisplacement '/root/pull' (scene.xml:6), and that one prescribes its motion"));
+    }
+    SECTION("two prescribed displacements") {
+        CHECK_THAT(errorOf(grid("<PrescribedDisplacement name=\"a\" indices=\"5\" displacement=\"0.01 0 0\"/>\n"
+                                "  <PrescribedDisplacement name=\"b\" indices=\"7 5\" displacement=\"0 0.01 0\"/>")),
+                   Contains("scene.xml:7: error: PrescribedDisplacement 'b': node 5 axis x is also constrained by "
+                            "PrescribedDisplacement '/root/a'"));
+    }
+}
+
+TEST_CASE("Constraints on different axes of one node, or holding it at rest together, still run", "[FixedConstraint][PrescribedDisplacement]") {
+    // z held on the base, the pulled face (xmax, which shares nodes 1 3 with zmin) moved along x only
+    auto sim = Simulation::fromString(grid("<FixedConstraint name=\"base\" group=\"zmin\" directions=\"0 0 1\"/>\n"
+                                           "  <FixedConstraint name=\"side\" group=\"xmin\"/>\n"
+                                           "  <PrescribedDisplacement name=\"pull\" group=\"xmax\" displacement=\"0.01 0 0\" "
+                                           "directions=\"1 0 0\" shape=\"step\"/>"),
+                                      "scene.xml");
+    sim->step();
+    auto& s = sim->state("mo");
+    // node 1 (xmax, zmin): x follows the prescribed displacement, z stays held; node 0 (xmin, zmin) is
+    // held by two FixedConstraints in z (they agree)
+    CHECK(s.x()[1].x() == Approx(s.x0()[1].x() + 0.01).epsilon(1e-14));
+    CHECK(s.x()[1].z() == s.x0()[1].z());
+    CHECK(s.x()[0] == s.x0()[0]);
+}

@@ -250,9 +250,17 @@ TEST_CASE("triangleGroup selects the physical group of a Gmsh file's triangles, 
 }
 
 TEST_CASE("SurfacePressure input errors are located", "[SurfacePressure]") {
-    SECTION("hexahedra") {
-        CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\"/>", "hexahedra")),
-                   Contains("scene.xml:6: error: SurfacePressure 'p': needs a tetrahedral mesh (faces of hexahedra are not supported)"));
+    SECTION("a triangle group on a hexahedral mesh") {
+        CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" triangleGroup=\"1\"/>", "hexahedra")),
+                   Contains("scene.xml:6: error: SurfacePressure 'p': the mesh has no triangles, so no triangle groups"));
+    }
+    SECTION("a node group the mesh does not have") {
+        CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" nodeGroup=\"corner\"/>", "hexahedra")),
+                   Contains("scene.xml:6: error: SurfacePressure 'p': no node group 'corner' in the mesh"));
+    }
+    SECTION("rampTime and curve together") {
+        CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" rampTime=\"1\" curve=\"ramp 1\"/>")),
+                   Contains("scene.xml:6: error: SurfacePressure 'p': give curve or rampTime, not both"));
     }
     SECTION("a triangle group on a mesh without triangles") {
         CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" triangleGroup=\"2\"/>")),
@@ -260,11 +268,11 @@ TEST_CASE("SurfacePressure input errors are located", "[SurfacePressure]") {
     }
     SECTION("a triangle group that does not exist") {
         CHECK_THAT(errorOf(cubeScene("<SurfacePressure name=\"p\" pressure=\"1\" triangleGroup=\"9\"/>")),
-                   Contains("scene.xml:6: error: SurfacePressure 'p': selects no boundary triangle"));
+                   Contains("scene.xml:6: error: SurfacePressure 'p': selects no boundary face"));
     }
     SECTION("a group of triangles that bound no tetrahedron") {
         CHECK_THAT(errorOf(cubeScene("<SurfacePressure name=\"p\" pressure=\"1\" triangleGroup=\"4\"/>")),
-                   Contains("scene.xml:6: error: SurfacePressure 'p': selects no boundary triangle"));
+                   Contains("scene.xml:6: error: SurfacePressure 'p': selects no boundary face"));
     }
     SECTION("a triangle that bounds no tetrahedron is left out with a warning") {
         CaptureCerr cap;
@@ -276,5 +284,105 @@ TEST_CASE("SurfacePressure input errors are located", "[SurfacePressure]") {
         CHECK_THAT(errorOf("<Node name=\"root\" dt=\"0.001\">\n  <MechanicalObject name=\"state\" position=\"0 0 0\"/>\n"
                            "  <SurfacePressure name=\"p\" pressure=\"1\"/>\n</Node>\n"),
                    Contains("scene.xml:3: error: SurfacePressure 'p': needs a mesh source (MeshLoader, GridMesh) in its context"));
+    }
+}
+
+namespace {
+
+/// Volume of a hexahedral mesh, the sum over its trilinear hexahedra of the integral of det(dx/dxi)
+/// over [-1, 1]^3 by 2x2x2 Gauss points: exact, det(dx/dxi) being of degree 2 in each of xi, eta,
+/// zeta. Each row of dx/dxi is linear in one coordinate of the nodes, so V is linear in each single
+/// coordinate (central differences of it are exact up to round-off). Computed from the volume, not
+/// from any surface.
+double hexVolume(const fascia::MeshData& mesh, const Positions& x) {
+    static const double s[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                   {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};  // VTK order
+    const double g = 1 / std::sqrt(3.0);
+    double v = 0;
+    for (auto& h : mesh.hexahedra)
+        for (int q = 0; q < 8; ++q) {
+            const double p[3] = {s[q][0] * g, s[q][1] * g, s[q][2] * g};
+            Mat3 J = Mat3::Zero();
+            for (int a = 0; a < 8; ++a)
+                for (int d = 0; d < 3; ++d) {
+                    double dN = s[a][d] / 8.0;
+                    for (int e = 0; e < 3; ++e)
+                        if (e != d) dN *= 1 + s[a][e] * p[e];
+                    J.col(d) += dN * x[h[a]];
+                }
+            v += J.determinant();
+        }
+    return v;
+}
+
+} // namespace
+
+TEST_CASE("a pressure on the closed surface of a hexahedral mesh gives minus p times the gradient of the enclosed volume",
+          "[SurfacePressure]") {
+    // The faces are bilinear patches; with nodes moved at random they are not flat, so a face split
+    // into two triangles, or a quarter of -p A n on each corner, fails this. V is the hexahedra's
+    // volume (above), linear in each coordinate: the central difference is exact up to round-off.
+    auto sim = Simulation::fromString(gridScene("<SurfacePressure name=\"p\" pressure=\"1000\"/>", "hexahedra"));
+    auto& st = sim->state("state");
+    const auto& mesh = meshOf(*sim, "grid");
+    auto* sp = dynamic_cast<fascia::mechanics::SurfacePressure*>(sim->find("p"));
+    REQUIRE(sp);
+    CHECK(sp->quadCount() == 2 * (3 * 2 + 2 * 4 + 3 * 4));  // the boundary faces of 3 x 2 x 4 cells
+    CHECK(sp->triangleCount() == 0);
+    CHECK(hexVolume(mesh, st.x0()) == Approx(0.2 * 0.1 * 0.3).epsilon(1e-12));
+    // at rest: nothing net on the closed surface, and each face pushes inwards
+    const Positions rest = forces(*sim, "p", 0.0);
+    CHECK(sum(rest).norm() < 1e-12);
+    for (size_t i = 0; i < st.size(); ++i)
+        if (st.x0()[i][2] == 0.3) CHECK(rest[i][2] < 0);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.015, 0.015);  // cells are 0.05 .. 0.075 m
+    const Mat3 R = Eigen::AngleAxisd(-0.9, Vec3(1, 0.4, -0.2).normalized()).toRotationMatrix();
+    const Mat3 F = someF();
+    for (size_t i = 0; i < st.size(); ++i)
+        st.x()[i] = R * F * (st.x0()[i] + Vec3(u(rng), u(rng), u(rng))) + Vec3(-0.3, 0.2, 0.1);
+    const Positions f = forces(*sim, "p", 0.0);
+    const double h = 1e-3;
+    double worst = 0, largest = 0;
+    for (size_t i = 0; i < st.size(); ++i)
+        for (int a = 0; a < 3; ++a) {
+            Positions x = st.x();
+            x[i][a] += h;
+            const double vp = hexVolume(mesh, x);
+            x[i][a] -= 2 * h;
+            const double vm = hexVolume(mesh, x);
+            const double expected = -1000 * (vp - vm) / (2 * h);
+            worst = std::max(worst, std::abs(f[i][a] - expected));
+            largest = std::max(largest, std::abs(expected));
+        }
+    CAPTURE(worst, largest);
+    CHECK(largest > 1.0);
+    CHECK(worst < 1e-9 * largest);
+    Vec3 moment = Vec3::Zero();
+    for (size_t i = 0; i < st.size(); ++i) moment += st.x()[i].cross(f[i]);
+    CHECK(sum(f).norm() < 1e-12);
+    CHECK(moment.norm() < 1e-12);
+}
+
+TEST_CASE("a pressure on one hexahedral face follows a homogeneous deformation by Nanson's formula", "[SurfacePressure]") {
+    // as for the triangles: x = F X + c maps each nodal force to J F^-T times its rest value
+    auto sim = Simulation::fromString(gridScene("<SurfacePressure name=\"p\" pressure=\"1000\" nodeGroup=\"zmax\"/>", "hexahedra"));
+    auto& st = sim->state("state");
+    CHECK(dynamic_cast<fascia::mechanics::SurfacePressure*>(sim->find("p"))->quadCount() == 3 * 2);
+    const Positions rest = forces(*sim, "p", 0.0);
+    CHECK(sum(rest)[2] == Approx(-1000 * 0.2 * 0.1).epsilon(1e-12));
+    // a flat face's corner gets a quarter of each of its cells' force: -p A / 4 per cell corner
+    const double cellArea = (0.2 / 3) * (0.1 / 2);
+    for (size_t i = 0; i < st.size(); ++i)
+        if (st.x0()[i] == Vec3(0, 0, 0.3)) CHECK(rest[i][2] == Approx(-1000 * cellArea / 4).epsilon(1e-12));
+    const Mat3 F = someF();
+    const Mat3 cof = F.determinant() * F.inverse().transpose();
+    for (size_t i = 0; i < st.size(); ++i) st.x()[i] = F * st.x0()[i] + Vec3(0.5, 0.1, -0.2);
+    const Positions f = forces(*sim, "p", 0.0);
+    const Vec3 expectedTotal = -1000 * 0.2 * 0.1 * cof * Vec3::UnitZ();
+    CHECK((sum(f) - expectedTotal).norm() < 1e-12 * expectedTotal.norm());
+    for (size_t i = 0; i < st.size(); ++i) {
+        INFO("node " << i);
+        CHECK((f[i] - cof * rest[i]).norm() < 1e-12);
     }
 }

@@ -152,9 +152,10 @@ TEST_CASE("Monitor records positions, velocities, reactions and element quantiti
         sim->step();
         if (n % 3 == 0) record();
     }
+    record();  // the final state (step 31), which finish() records whatever every
     sim->finish();
     const auto rows = lines(slurp(dir / "mon.csv"));
-    REQUIRE(rows.size() == 1 + 11);  // header, steps 0 3 ... 30
+    REQUIRE(rows.size() == 1 + 12);  // header, steps 0 3 ... 30, 31
     CHECK(rows[0] == "time [s],x5_x [m],x5_y [m],x5_z [m],v5_x [m/s],v5_y [m/s],v5_z [m/s],"
                      "x11_x [m],x11_y [m],x11_z [m],v11_x [m/s],v11_y [m/s],v11_z [m/s],"
                      "reaction_x [N],reaction_y [N],reaction_z [N],J[3] [-],J[40] [-]");

@@ -3,7 +3,9 @@
 #include "fascia/plugin/Registry.h"
 
 /// Bumped whenever a change to the core breaks binary compatibility with built plugins.
-#define FASCIA_ABI_VERSION 1
+/// 2: BaseIntegrator::stableTimeStep, BaseConstraint::prescribesMotion and BaseObserver::observeFinal
+/// (new virtual functions) and the load-curve parameters.
+#define FASCIA_ABI_VERSION 2
 
 namespace fascia::core {
 

@@ -12,7 +12,7 @@ namespace fascia::core {
 
 struct ComponentEntry {
     std::string name;         ///< the XML tag
-    std::string description;  ///< one line
+    std::string description;  ///< its first line: the summary --list prints; further lines: details for --describe
     std::string plugin;       ///< owning plugin id ("" for the core)
     std::string pluginFile;   ///< shared library it came from
     std::function<std::unique_ptr<Component>()> create;

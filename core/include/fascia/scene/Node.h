@@ -1,6 +1,7 @@
 #pragma once
 /// The scene graph: nodes with children and components.
 #include "fascia/base/Component.h"
+#include "fascia/sim/LoadCurve.h"
 
 #include <map>
 #include <memory>
@@ -9,12 +10,17 @@
 
 namespace fascia::core {
 
+struct MechanicalGroup;
+
 /// Per-run settings shared by the components of one scene (held by its root node).
 struct SceneContext {
     std::string sceneFile;     ///< file the scene came from ("" when built in code)
     std::string outputDir = "."; ///< folder observers write into
     double time = 0.0, dt = 0.0;
     long step = 0;
+    /// The mechanical groups the simulation assembled (set by Simulation::init; null before), for
+    /// observers that evaluate a group's forces (a Monitor's residual).
+    std::vector<MechanicalGroup>* groups = nullptr;
     /// Output files already claimed by a component (path -> who), so that two exporters never
     /// write over each other's files.
     std::map<std::string, std::string> outputs;
@@ -89,13 +95,16 @@ public:
     Param<TimeStep> dt{this, ParamSpec("dt").unit("s").help("time step, or \"auto\" for the smallest stable step of the force fields times dtSafety (root node)")};
     Param<double> dtSafety{this, ParamSpec("dtSafety").above(0).max(1).help("safety factor applied to the critical time step when dt=\"auto\" (the critical step is computed at rest; large compression of a nearly incompressible material raises the wave speed, e.g. 1.4 times at 30 %: keep 0.5 or less there)"), 0.5};
     Param<Vec3> gravity{this, ParamSpec("gravity").unit("m/s^2").help("gravity acceleration, inherited by child nodes that do not set it"), Vec3::Zero()};
-    Param<double> endTime{this, ParamSpec("endTime").unit("s").min(0).help("simulated time fascia-run runs to when neither --steps nor --time is given (0: 100 steps)"), 0.0};
+    CurveParam gravityCurve{this, curveSpec("gravityCurve", "this node's gravity, g(t) = c(t) gravity (with gravity, inherited with it)")};
+    Param<double> endTime{this, ParamSpec("endTime").unit("s").min(0).help("simulated time fascia-run runs to, exactly (the last step shortened to end on it), when neither --steps nor --time is given (0: 100 steps)"), 0.0};
 
     /// The run's shared context (on the root node).
     SceneContext& context();
 
     /// Gravity of the nearest node (this or an ancestor) that sets it.
     Vec3 contextGravity() const;
+    /// The load curve of that node's gravity (the constant 1 when it has none).
+    const Curve& contextGravityCurve() const;
 
 private:
     Node* m_parent = nullptr;

@@ -2,6 +2,7 @@
 /// The roles a component plays in the simulation loop. Plugins derive from these; the core knows
 /// nothing of any physics beyond them.
 #include "fascia/base/Component.h"
+#include "fascia/sim/LoadCurve.h"
 
 #include <algorithm>
 #include <limits>
@@ -99,6 +100,10 @@ public:
     virtual const IndexList& constrainedNodes() const = 0;
     /// Axes it holds (x, y, z): a monitor of its reaction sums only these components.
     virtual std::array<bool, 3> constrainedAxes() const { return {true, true, true}; }
+    /// True when it moves its nodes along a prescribed path (PrescribedDisplacement), false when it
+    /// holds them at rest (FixedConstraint). Two constraints on one node and axis are an input error
+    /// (Simulation::init) when either prescribes motion; two that hold it at rest agree.
+    virtual bool prescribesMotion() const { return false; }
 };
 
 struct MechanicalGroup;
@@ -166,6 +171,12 @@ public:
     /// True when the run did not do what it was asked (a static solver with a load step that did
     /// not converge): fascia-run then exits 3 after writing its files.
     virtual bool runFailed() const { return false; }
+    /// The largest time step (s) for which it is stable on a group whose force fields give the
+    /// critical step `critical` (the smallest BaseForceField::stableTimeStep, central difference's
+    /// limit 2 / omega_max; infinity when no force field limits the step). dt="auto" is the smallest
+    /// over the groups times dtSafety, and a larger dt is warned. Default: critical. 0 when no step is
+    /// stable (forward Euler without damping); `why` then says why and what to do.
+    virtual double stableTimeStep(double critical, std::string& why) const { return critical; }
 };
 
 /// Reads the scene after each step (exporters, monitors).
@@ -173,6 +184,10 @@ class BaseObserver : public Component {
 public:
     /// Called once after init with the initial state, then after every step.
     virtual void observe(double t, long step) = 0;
+    /// Called once at the end of a run (Simulation::finish) with the final state, whatever the steps
+    /// observe() skipped: an observer that records only some steps records this one too, unless it
+    /// already did at this step.
+    virtual void observeFinal(double t, long step) {}
 };
 
 /// One state with everything acting on it, as assembled by the simulation for its integrator.
@@ -183,16 +198,21 @@ struct MechanicalGroup {
     std::vector<BaseMass*> masses;
     std::vector<BaseConstraint*> constraints;
     Vec3 gravity = Vec3::Zero();
+    const Curve* gravityCurve = nullptr;  ///< scales gravity: g(t) = c(t) gravity (null: 1)
     std::vector<double> mass;      ///< summed nodal masses
     std::vector<double> invMass;   ///< 1/mass (0 where the mass is 0)
     long stepIndex = 0;            ///< the step being computed (for messages)
 
-    /// f = sum of force fields + gravity + external forces, then constraints project it; the
+    /// f = sum of force fields + c(t) m gravity + external forces, then constraints project it; the
     /// reaction of a constrained node is minus the force the constraints removed (the static
     /// support force: the inertia of prescribed motion is not included).
     void computeForces(double t);
     Positions beforeConstraints;   ///< scratch for the reactions: f at reactionNodes before the constraints
     IndexList reactionNodes;       ///< the constrained nodes of the last computeForces
+    /// The norm |f| of the free nodal forces at the current positions and time t: what
+    /// computeForces leaves in f (every force, the constrained components removed), 0 at an
+    /// equilibrium. Evaluates the forces once more; the state's f and reactions are left as they were.
+    double residualNorm(double t);
     /// Applies the constraints' positions and velocities at time t.
     void projectState(double t);
     /// Throws a simulation error naming the step and the component when x, v or f holds NaN/inf.

@@ -13,6 +13,7 @@
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -54,7 +55,20 @@ public:
     /// One step of dt: for each group: clear forces, forces, constraints, integrate; then observers.
     void step();
     void run(long steps);
-    /// Flushes observers and calls every component's cleanup (once).
+    /// Runs to the time T exactly: steps of dt, the last one shortened to end on T (every component
+    /// hears the shorter dt through dtChanged, and dt again after it), so that time() == T after it.
+    /// On a run that has not stepped yet, a dt larger than T - time() is a located error
+    /// (checkEndTime). Nothing happens when T <= time().
+    void runUntil(double T);
+    /// One step toward T: a step of dt, or the last one, shortened to end on T exactly when T is less
+    /// than one dt away (a whole step when T is a multiple of dt up to 1e-9 dt).
+    void stepToward(double T);
+    /// The number of steps runUntil(T) takes from the current time.
+    long stepsUntil(double T) const;
+    /// The located error for an end time T shorter than one step (dt > T - time()).
+    void checkEndTime(double T) const;
+    /// Lets every observer record the final state (whatever its `every`), then calls every
+    /// component's cleanup (once). After a failed step the observers record nothing more.
     void finish();
 
     double time() const { return m_time; }
@@ -80,8 +94,20 @@ public:
 private:
     /// The smallest stable time step and the force field that sets it (null when none does).
     std::pair<double, const BaseForceField*> limitingForceField() const;
+    /// The smallest integrator step (BaseIntegrator::stableTimeStep) over the groups, the integrator
+    /// giving it (null without groups) and, for a step of 0, why none is stable.
+    struct IntegratorLimit {
+        double step = std::numeric_limits<double>::infinity();
+        const BaseIntegrator* integrator = nullptr;
+        std::string why;
+    };
+    IntegratorLimit integratorLimit() const;
     /// The located "no time step" error when dt is not set.
     void requireDt() const;
+    /// Sets dt, warning above the critical step when asked; every component hears it.
+    void applyDt(double dt, bool warnAboveCritical);
+    /// One step of dt; when `end` is a number, the time after it is exactly `end` (a run's last step).
+    void advance(double end);
     std::unique_ptr<Node> m_root;
     std::vector<MechanicalGroup> m_groups;
     std::vector<BaseObserver*> m_observers;
@@ -90,7 +116,7 @@ private:
     long m_step = 0;
     double m_timeAtDtChange = 0.0;  ///< time and step of the last dt change: time = t0 + (step - s0) dt
     long m_stepAtDtChange = 0;
-    bool m_initialised = false, m_started = false, m_finished = false;
+    bool m_initialised = false, m_started = false, m_finished = false, m_failed = false;
 };
 
 } // namespace fascia::core

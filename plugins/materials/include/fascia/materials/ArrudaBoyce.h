@@ -69,6 +69,9 @@ public:
     static constexpr const char* kExample = "mu=1000;lambdaM=2;kappa=20000";
     static constexpr const char* kDescription =
         "Arruda-Boyce eight-chain mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2, C = 1/2, 1/20, 11/1050, 19/7000, 519/673750 (Arruda-Boyce 1993, NiftySim)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2, C_i = 1/2, 1/20, 11/1050, 19/7000, 519/673750, I1bar = J^(-2/3) tr C, J = det F (Arruda and Boyce 1993, five-term series); small-strain shear modulus mu (1 + 3/(5 lambdaM^2) + 99/(175 lambdaM^4) + 513/(875 lambdaM^6) + 42039/(67375 lambdaM^8)); ViscoelasticProny parts: isochoric the series, volumetric kappa/2 (J - 1)^2";
     void init() override {
         m_law.mu = m_mu.get();
         m_law.lambdaM = m_lambdaM.get();

@@ -1,6 +1,8 @@
 #pragma once
 /// The one list of built-in materials. Each entry is a component class derived from Material<Law>
-/// with `static constexpr const char* kName, kDescription`; the list drives:
+/// with `static constexpr const char* kName, kDescription` (one line, for --list), `kEnergy` (W in
+/// full with its invariants and parameter conversions, which --describe prints) and `kExample`;
+/// the list drives:
 ///   - the registration of the materials plugin (MaterialsPlugin.cpp: --list, --describe);
 ///   - the inlined element loops of HEMLForceField and TLEDForceField (fascia/elements/LawDispatch.h);
 ///   - the test factories and conformance sweeps (createBuiltinMaterial, forEachBuiltinMaterial).
@@ -25,7 +27,7 @@
 
 namespace fascia::materials {
 
-/// A compile-time list of material component classes (each with kName, kDescription and kExample).
+/// A compile-time list of material component classes (each with kName, kDescription, kEnergy and kExample).
 template <class... Ms>
 struct MaterialList {
     static constexpr size_t size = sizeof...(Ms);

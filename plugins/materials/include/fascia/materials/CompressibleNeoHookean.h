@@ -13,6 +13,9 @@ public:
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;lambda=9000";
     static constexpr const char* kDescription = "compressible neo-Hookean C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (HEML eq. (26))";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, I1 = tr C, C = F^T F, J = det F, C1 = mu/2 unless given (HEML eq. (26)); with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), lambda = E nu/((1 + nu)(1 - 2 nu)); ViscoelasticProny parts: isochoric C1 (I1 - 3) - 2 C1 ln J, volumetric lambda/2 (ln J)^2 - (mu - 2 C1) ln J";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

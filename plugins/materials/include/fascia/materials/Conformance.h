@@ -21,8 +21,13 @@
 ///       (forces must rotate with it, the energy must not change).
 ///     The state's positions are restored afterwards. Stateful fields (viscoelastic history) must be
 ///     checked with their history switched off, since the harness calls addForce many times.
+/// (c) Rest under relaxation, on a whole simulation: restDrift steps an unloaded body that starts at
+///     rest (with its viscous history on) and measures how far it moves and how much the reactions
+///     of its constrained nodes change. A body at rest must stay there to round-off with every law
+///     and every ViscoelasticProny apply value that the force field accepts (RelaxationSplit.h).
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/Simulation.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -222,6 +227,45 @@ inline ForceFieldReport checkForceField(core::BaseForceField& ff, core::BaseMech
     rep.restForce = detail::maxNorm(detail::forces(ff, s, opt.t)) / scale;
 
     s.x() = saved;
+    return rep;
+}
+
+/// Result of restDrift. Every number is relative.
+struct RestReport {
+    double maxDisplacement = 0;    ///< max over the steps and nodes of |x - x0| / h (h: characteristic spacing)
+    double firstReaction = 0;      ///< max |reaction| after the first step / forceScale
+    double maxReactionChange = 0;  ///< max over the steps and nodes of |reaction - reaction after step 1| / forceScale
+    long steps = 0;                ///< steps run
+};
+
+/// Runs `steps` steps of sim, whose state s starts at rest (x = x0, v = 0) with no load, and
+/// reports its drift (see RestReport; h is the bounding-box diagonal / cbrt(nodes), forceScale a
+/// force in N that the caller chooses, e.g. a modulus times h^2).
+inline RestReport restDrift(core::Simulation& sim, core::BaseMechanicalState& s, long steps, double forceScale) {
+    RestReport rep;
+    const Positions& X = s.x0();
+    const size_t n = X.size();
+    if (n == 0) return rep;
+    Vec3 lo = X[0], hi = X[0];
+    for (const Vec3& p : X) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double h = (hi - lo).norm() / std::max(1.0, std::cbrt(double(n)));
+    Positions first;
+    for (long k = 0; k < steps; ++k) {
+        sim.step();
+        ++rep.steps;
+        for (size_t i = 0; i < n; ++i) rep.maxDisplacement = std::max(rep.maxDisplacement, (s.x()[i] - X[i]).norm() / h);
+        const Positions& r = s.reaction();
+        if (k == 0) {
+            first = r;
+            rep.firstReaction = detail::maxNorm(r) / forceScale;
+        } else {
+            for (size_t i = 0; i < r.size() && i < first.size(); ++i)
+                rep.maxReactionChange = std::max(rep.maxReactionChange, (r[i] - first[i]).norm() / forceScale);
+        }
+    }
     return rep;
 }
 

@@ -78,6 +78,9 @@ public:
     static constexpr const char* kExample = "mu=1000;k1=3000;k2=4;dispersion=0.1;bulkModulus=20000;direction=1 0.2 0.3;direction2=-0.2 1 0.4";
     static constexpr const char* kDescription =
         "Holzapfel-Gasser-Ogden mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2, E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), fibres in tension only (<E> = max(E, 0)), one or two families, kappa = dispersion, K = bulkModulus (Gasser 2006)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2, E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), <E> = max(E, 0), I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, I6bar = J^(-2/3) b0.C b0 (i = 6 only with direction2), kappa = dispersion, K = bulkModulus, k2 = 0: k1/2 <E_i>^2 (Gasser, Ogden and Holzapfel 2006); ViscoelasticProny parts: isochoric all but K/2 (ln J)^2, volumetric K/2 (ln J)^2";
     void init() override {
         m_law.mu = m_mu.get();
         m_law.k1 = m_k1.get();

@@ -12,6 +12,9 @@ public:
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "C1=500";
     static constexpr const char* kDescription = "HEML's neo-Hookean C1 (I1 - 3), no volumetric term (HEML Table 3)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = C1 (I1 - 3), I1 = tr C, C = F^T F; no volumetric term and not stress-free at rest (S = 2 C1 I at C = I); ViscoelasticProny relaxes C1 (I1 - 3) - 2 C1 ln J (apply=\"isochoric\" only) (HEML Table 3)";
     void init() override { m_law.C1 = m_C1.get(); }
     double shearModulus() const override { return 2.0 * m_law.C1; }
     double bulkModulus() const override { return 0.0; }

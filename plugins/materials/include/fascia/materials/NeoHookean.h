@@ -12,6 +12,9 @@ public:
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;kappa=20000";
     static constexpr const char* kDescription = "neo-Hookean mu/2 (I1bar - 3) + kappa/2 (J - 1)^2 (TLED eq. (31)-(32), no fibres)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2, I1bar = J^(-2/3) I1, I1 = tr C, C = F^T F, J = det F (TLED eq. (31)-(32) without fibres); with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), kappa = E/(3 (1 - 2 nu)); ViscoelasticProny parts: isochoric mu/2 (I1bar - 3), volumetric kappa/2 (J - 1)^2";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

@@ -12,6 +12,9 @@ public:
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "youngModulus=3000;poissonRatio=0.45";
     static constexpr const char* kDescription = "Saint Venant-Kirchhoff material, lambda/2 (tr E)^2 + mu tr(E^2) (HEML Table 3)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = lambda/2 (tr E)^2 + mu tr(E^2), E = (C - I)/2 (Green-Lagrange strain), C = F^T F; written as lambda/8 (I1 - 3)^2 + mu/4 (I1^2 - 2 I2 - 2 I1 + 3); no separate volumetric part (all of W is isochoric() for ViscoelasticProny); lambda, mu from youngModulus, poissonRatio as the Lame coefficients (HEML Table 3)";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -14,6 +14,9 @@ public:
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;kappa=20000;eta=3000;direction=1 1 0";
     static constexpr const char* kDescription = "neo-Hookean plus fibres eta/4 (I4bar - 1)^2 (TLED eq. (33) convention)";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = mu/2 (I1bar - 3) + eta/4 (I4bar - 1)^2 + kappa/2 (J - 1)^2, I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, C = F^T F, J = det F, a0 = direction (TLED eq. (31) with eq. (33)'s factor eta/4, see Laws.h); ViscoelasticProny parts: isochoric the I1bar and I4bar terms, volumetric kappa/2 (J - 1)^2";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

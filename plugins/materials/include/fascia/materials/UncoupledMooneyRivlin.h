@@ -48,6 +48,9 @@ public:
     static constexpr const char* kExample = "c1=400;c2=150;k=20000";
     static constexpr const char* kDescription =
         "FEBio's uncoupled Mooney-Rivlin c1 (I1bar - 3) + c2 (I2bar - 3) + k/2 (ln J)^2";
+    /// the energy in full, for --describe (a second line of the registry description)
+    static constexpr const char* kEnergy =
+        "W = c1 (I1bar - 3) + c2 (I2bar - 3) + k/2 (ln J)^2, I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2, I1 = tr C, I2 = (I1^2 - tr(C^2))/2, C = F^T F, J = det F (FEBio's uncoupled Mooney-Rivlin); shear modulus 2 (c1 + c2), bulk modulus k; ViscoelasticProny parts: isochoric c1 (I1bar - 3) + c2 (I2bar - 3), volumetric k/2 (ln J)^2";
     void init() override {
         m_law.c1 = m_c1.get();
         m_law.c2 = m_c2.get();

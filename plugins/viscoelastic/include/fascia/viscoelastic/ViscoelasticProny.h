@@ -51,6 +51,9 @@ public:
     Apply apply() const;
     bool relaxesIsochoric() const { return apply() != Apply::Volumetric; }
     bool relaxesVolumetric() const { return apply() != Apply::Isochoric; }
+    /// A located input error at the `apply` attribute, for the force fields' check that the parts
+    /// they relax are stress-free at rest (fascia/materials/RelaxationSplit.h).
+    [[noreturn]] void failApply(const std::string& message) const { fail(m_apply, message); }
 
     /// Time step (s) the current coefficients were computed for; 0 before the first dtChanged().
     double dt() const { return m_dt; }
