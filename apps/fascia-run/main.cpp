@@ -6,6 +6,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cerrno>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 using namespace fascia::core;
 
@@ -50,7 +52,8 @@ output: a progress bar on a terminal (none when piped or with --quiet), then one
 exit codes:
   0  success
   2  invalid scene or input (the located error, file:line, on stderr)
-  3  the simulation failed while running (NaN or instability: step and component named)
+  3  the simulation failed while running (NaN or instability: step and component named), or
+     a static solver (DynamicRelaxation) did not converge in a load step (warned, files written)
   1  anything else (bad command line, a file that cannot be written, internal error)
   130  interrupted (Ctrl-C or SIGTERM): the run stops after the current step, files complete
 )";
@@ -236,9 +239,22 @@ int main(int argc, char** argv) {
             for (auto& r : sim->timers())
                 if (r.calls) std::printf("%-40s %-22s %12.6f %10ld\n", r.path.c_str(), r.type.c_str(), r.seconds, r.calls);
         }
+        // what a static solver reports (once per integrator); one that did not converge exits 3
+        std::vector<const BaseIntegrator*> integrators;
+        bool failed = false;
+        for (auto& g : sim->groups())
+            if (std::find(integrators.begin(), integrators.end(), g.integrator) == integrators.end()) {
+                integrators.push_back(g.integrator);
+                if (const std::string line = g.integrator->runSummary(); !line.empty()) std::printf("%s\n", line.c_str());
+                failed |= g.integrator->runFailed();
+            }
         if (g_interrupted) {
             std::cerr << "fascia-run: interrupted after " << done << " steps (files written so far are complete)\n";
             return 130;
+        }
+        if (failed) {
+            std::cerr << "fascia-run: the static solution did not converge in some load steps (see the warnings above)\n";
+            return 3;
         }
         return 0;
     } catch (const Error& e) {

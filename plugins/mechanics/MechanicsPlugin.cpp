@@ -3,6 +3,7 @@
 
 #include "CentralDifference.h"
 #include "ConstantForce.h"
+#include "DynamicRelaxation.h"
 #include "ExplicitEuler.h"
 #include "FixedConstraint.h"
 #include "LoadCurve.h"
@@ -20,6 +21,7 @@ static void registerMechanics(fascia::core::Registry& r) {
     r.add<SemiImplicitEuler>("SemiImplicitEuler", "semi-implicit Euler integration with Rayleigh damping (HEML eq. (32))");
     r.add<ExplicitEuler>("ExplicitEuler", "explicit Euler integration with Rayleigh damping (HEML eq. (31))");
     r.add<CentralDifference>("CentralDifference", "central-difference integration with Rayleigh damping (TLED section 2)");
+    r.add<DynamicRelaxation>("DynamicRelaxation", "static solver: adaptive dynamic relaxation, one load step per step (Joldes, Wittek and Miller 2009)");
     r.add<FixedConstraint>("FixedConstraint", "fixes nodes in all or some directions (rollers, symmetry planes)");
     r.add<PrescribedDisplacement>("PrescribedDisplacement", "nodes follow a displacement times a load shape over time");
     r.add<ConstantForce>("ConstantForce", "a force on nodes, constant or scaled by a load curve");

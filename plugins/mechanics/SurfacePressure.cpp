@@ -34,6 +34,14 @@ template <class Faces> void SurfacePressure::keepNodeGroup(const MeshData& mesh,
 }
 
 void SurfacePressure::collectTriangles(const MeshData& mesh, const Positions& X) {
+    m_tris.clear();
+    // a mesh of hexahedra only: its boundary triangles (a GridMesh publishes them) bound no
+    // tetrahedron; its faces are the quadrilaterals of collectQuads
+    if (mesh.tetrahedra.empty()) {
+        if (m_triangleGroup.get() != 0)
+            fail(m_triangleGroup, "the mesh has no tetrahedra, so no triangle groups (select hexahedron faces with nodeGroup)");
+        return;
+    }
     // each face of a tetrahedron -> the opposite node, and how many tetrahedra use it
     std::map<std::array<int, 3>, std::pair<int, int>> faces;
     for (auto& t : mesh.tetrahedra)

@@ -368,6 +368,15 @@ private:
             if (c < 0) fail(m_file, countLine, "negative number of entities");
         }
         m_sc.expectEndOfLine("the four entity counts");
+        // each entity is a line of at least 10 bytes ("1 0 0 0 0\n"): no count may pass what is left
+        // of the file, so that the sum below cannot overflow
+        const long long left = m_sc.remaining();
+        for (const long long c : counts)
+            if (c > left / 10)
+                fail(m_file, countLine,
+                     "the $Entities header announces " + std::to_string(c) + " entities of one dimension, more than the " +
+                         std::to_string(left) + " bytes left in the file can hold (an entity takes 10 bytes or more): "
+                         "the header is corrupt");
         const long long total = counts[0] + counts[1] + counts[2] + counts[3];
         long long done = 0;
         for (int dim = 0; dim < 4; ++dim) {

@@ -1,9 +1,10 @@
 // readMesh: picks the reader by the file's extension, then validates what it read. The readers
-// live one format per file (GmshReader, VTKReader, TetGenReader) on a shared TextScanner; the
+// live one format per file (GmshReader, LegacyVTKReader, VTKReader, TetGenReader) on a shared TextScanner; the
 // checks are in MeshValidation.cpp.
 #include "MeshReaders.h"
 
 #include "GmshReader.h"
+#include "LegacyVTKReader.h"
 #include "MeshBuilder.h"
 #include "MeshValidation.h"
 #include "ReaderSupport.h"
@@ -27,8 +28,10 @@ MeshData readMesh(const std::string& path, const ReadOptions& opt, ReadReport* r
     try {
         if (ext == ".msh")
             readGmsh(path, b);
-        else if (ext == ".vtk" || ext == ".vtu")
-            readVtk(path, ext == ".vtu", b);
+        else if (ext == ".vtk")
+            readLegacyVtk(path, b);
+        else if (ext == ".vtu")
+            readVtu(path, b);
         else if (ext == ".node" || ext == ".ele")
             readTetGen(path, b);
     } catch (const std::bad_alloc&) {

@@ -1,12 +1,14 @@
 #pragma once
 /// Volume-mesh readers: Gmsh (.msh ASCII 1, 2.2, 4.1), VTK (.vtk legacy, .vtu XML) and TetGen
 /// (.node/.ele). Pure functions: no scene component here (the MeshLoader component wraps them).
-/// One reader per format (GmshReader, VTKReader, TetGenReader) on a shared TextScanner; this header
-/// is their only public face. A build without VTK (FASCIA_WITH_VTK=OFF) refuses .vtk and .vtu files
-/// with a located error ("this build has no VTK support: ...").
+/// One reader per format (GmshReader, LegacyVTKReader, VTKReader, TetGenReader); this header is
+/// their only public face. Legacy .vtk files are parsed by our own reader (no VTK needed); a build
+/// without VTK (FASCIA_WITH_VTK=OFF) refuses .vtu files with a located error ("this build has no
+/// VTK support: ...").
 ///
 /// Every problem with the input throws fascia::core::Error (ErrorKind::Input) located at the line of
-/// the mesh file where it is ("file:line: error: ..."), or at line 0 when no line is known (VTK files,
+/// the mesh file where it is ("file:line: error: ..."; in a BINARY legacy .vtk file at its byte
+/// offset: "file: error: byte N: ..."), or at line 0 when no line is known (.vtu files,
 /// file-level problems).
 #include "fascia/base/Types.h"
 
@@ -33,7 +35,7 @@ struct ReadReport {
 
 /// Reads a volume mesh; the reader is picked by the extension (case-insensitive):
 ///   .msh        Gmsh ASCII, versions 1 (legacy $NOD/$ELM), 2.x and 4.1 (binary is refused)
-///   .vtk        VTK legacy unstructured grid
+///   .vtk        VTK legacy unstructured grid, ASCII or BINARY, file versions 1.0-4.2 and 5.1
 ///   .vtu        VTK XML unstructured grid
 ///   .node/.ele  TetGen: either name may be given, the other one is looked for beside it
 /// Node ids of the file (any numbering, e.g. 1-based or with gaps) are mapped to 0-based indices in

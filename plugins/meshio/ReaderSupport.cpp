@@ -70,7 +70,7 @@ void checkReadable(const std::string& path) {
 
 size_t reserveHint(long long n) { return size_t(std::clamp<long long>(n, 0, 1 << 22)); }
 
-std::string readWholeFile(const std::string& path) {
+std::string readWholeFile(const std::string& path, bool keepBom) {
     checkReadable(path);
     std::ifstream in(path, std::ios::binary);
     in.seekg(0, std::ios::end);
@@ -83,7 +83,7 @@ std::string readWholeFile(const std::string& path) {
         if (in.gcount() != size) fail(path, 0, "cannot read mesh file '" + path + "': read error after " +
                                                    std::to_string(in.gcount()) + " of " + std::to_string(size) + " bytes");
     }
-    if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // UTF-8 byte-order mark
+    if (!keepBom && text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // UTF-8 byte-order mark
     return text;
 }
 

@@ -28,7 +28,8 @@ void checkReadable(const std::string& path);
 /// A reservation for a count read from a file: a hint, capped so that a corrupt header announcing
 /// billions of records cannot exhaust memory before the records themselves are found missing.
 size_t reserveHint(long long n);
-/// The whole file (checked with checkReadable), without a UTF-8 byte-order mark.
-std::string readWholeFile(const std::string& path);
+/// The whole file (checked with checkReadable), without a UTF-8 byte-order mark unless keepBom
+/// (a reader that reports byte offsets keeps the file's bytes as they are).
+std::string readWholeFile(const std::string& path, bool keepBom = false);
 
 } // namespace fascia::meshio::detail

@@ -48,6 +48,8 @@ public:
             return true;
         }
     }
+    /// Bytes left after the current position: a bound for any count the file announces.
+    long long remaining() const { return (long long)(m_end - m_p); }
     /// First character of the record nextRecord() moved to.
     char peek() const { return m_p < m_end ? *m_p : '\0'; }
 

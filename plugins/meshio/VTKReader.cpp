@@ -1,15 +1,12 @@
 #include "VTKReader.h"
 #include "ReaderSupport.h"
+#include "VTKCells.h"
+#include "VTUHeaderCheck.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>
-#include <vtkCellType.h>
-#include <vtkCellTypes.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
-#include <vtkDataObjectTypes.h>
-#include <vtkDataSet.h>
-#include <vtkDataSetReader.h>
 #include <vtkIdList.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
@@ -19,11 +16,8 @@
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
-#include <algorithm>
-#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -126,35 +120,6 @@ private:
     std::vector<std::string> m_errors;
 };
 
-std::string vtkCellName(int type) {
-    switch (type) {
-    case VTK_EMPTY_CELL: return "empty cell";
-    case VTK_VERTEX: return "point";
-    case VTK_POLY_VERTEX: return "poly-point";
-    case VTK_LINE: return "line";
-    case VTK_POLY_LINE: return "polyline";
-    case VTK_TRIANGLE_STRIP: return "triangle strip";
-    case VTK_POLYGON: return "polygon";
-    case VTK_PIXEL: return "pixel";
-    case VTK_QUAD: return "quadrangle";
-    case VTK_WEDGE: return "prism";
-    case VTK_PYRAMID: return "pyramid";
-    case VTK_QUADRATIC_EDGE: return "3-node line";
-    case VTK_QUADRATIC_TRIANGLE: return "6-node triangle";
-    case VTK_QUADRATIC_QUAD: return "8-node quadrangle";
-    case VTK_QUADRATIC_TETRA: return "10-node tetrahedron";
-    case VTK_QUADRATIC_HEXAHEDRON: return "20-node hexahedron";
-    case VTK_QUADRATIC_WEDGE: return "15-node prism";
-    case VTK_QUADRATIC_PYRAMID: return "13-node pyramid";
-    case VTK_TRIQUADRATIC_HEXAHEDRON: return "27-node hexahedron";
-    case VTK_POLYHEDRON: return "polyhedron";
-    default: {
-        const char* cls = vtkCellTypes::GetClassNameFromTypeId(type);
-        return "VTK cell type " + std::to_string(type) + (cls && *cls ? std::string(" (") + cls + ")" : std::string());
-    }
-    }
-}
-
 /// A .vtu through vtkXMLUnstructuredGridReader; VTK's complaints become a located error.
 vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMessageCatcher& catcher) {
     vtkNew<vtkXMLUnstructuredGridReader> reader;
@@ -170,40 +135,6 @@ vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMes
              "VTK could not read '" + path + "'" + (catcher.hasErrors() ? ": " + catcher.errors() : std::string()) +
                  "; check that the file is a complete VTK XML unstructured grid");
     return reader->GetOutput();
-}
-
-/// A legacy .vtk: its header first (a dataset that is not an unstructured grid is named in the
-/// error), then the grid through vtkUnstructuredGridReader.
-vtkSmartPointer<vtkUnstructuredGrid> readLegacyGrid(const std::string& path, VtkMessageCatcher& catcher) {
-    {
-        // vtkDataSetReader reads the header only, to name the dataset kind when it is not a grid
-        vtkNew<vtkDataSetReader> probe;
-        catcher.watch(probe);
-        probe->SetFileName(path.c_str());
-        const int type = probe->ReadOutputType();
-        if (type < 0 || catcher.hasErrors())
-            fail(path, 0,
-                 "'" + path + "' is not a VTK legacy file VTK can read" +
-                     (catcher.hasErrors() ? " (" + catcher.errors() + ")" : std::string()) +
-                     "; it must start with '# vtk DataFile Version x.x', a title line, ASCII or BINARY, and "
-                     "'DATASET UNSTRUCTURED_GRID'");
-        if (type != VTK_UNSTRUCTURED_GRID) {
-            const char* name = vtkDataObjectTypes::GetClassNameFromTypeId(type);
-            fail(path, 0,
-                 "'" + path + "' holds a " + (name ? std::string(name) : "type " + std::to_string(type)) +
-                     " dataset; only DATASET UNSTRUCTURED_GRID has volume cells (tetrahedra, hexahedra)");
-        }
-    }
-    vtkNew<vtkUnstructuredGridReader> reader;
-    catcher.watch(reader);
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkUnstructuredGrid* out = reader->GetOutput();
-    if (catcher.hasErrors() || reader->GetErrorCode() != 0 || !out)
-        fail(path, 0,
-             "VTK could not read '" + path + "'" + (catcher.hasErrors() ? ": " + catcher.errors() : std::string()) +
-                 "; check that the file is complete");
-    return out;
 }
 
 /// Points, kept cells with their groups, and the cell arrays of grid into b.
@@ -231,7 +162,6 @@ void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder
         }
     }
 
-    std::vector<vtkIdType> tetCells, hexCells;
     vtkNew<vtkIdList> ids;
     std::vector<int> nodes;
     for (vtkIdType c = 0; c < nCells; ++c) {
@@ -247,55 +177,34 @@ void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder
             nodes[size_t(k)] = int(v);
         }
         const int group = groups ? int(std::lround(groups->GetComponent(c, 0))) : 0;
-        if (type == VTK_TETRA && nodes.size() == 4) {
-            mesh.tetrahedra.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
-            mesh.tetrahedronGroup.push_back(group);
-            b.origin.tetNumber.push_back(c);
-            tetCells.push_back(c);
-        } else if ((type == VTK_HEXAHEDRON || type == VTK_VOXEL) && nodes.size() == 8) {
-            std::array<int, 8> h;
-            if (type == VTK_VOXEL)  // voxels number their corners like a grid: (0,1,3,2, 4,5,7,6)
-                h = {nodes[0], nodes[1], nodes[3], nodes[2], nodes[4], nodes[5], nodes[7], nodes[6]};
-            else
-                std::copy(nodes.begin(), nodes.end(), h.begin());
-            mesh.hexahedra.push_back(h);
-            mesh.hexahedronGroup.push_back(group);
-            b.origin.hexNumber.push_back(c);
-            hexCells.push_back(c);
-        } else if (type == VTK_TRIANGLE && nodes.size() == 3) {
-            mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
-            mesh.triangleGroup.push_back(group);
-        } else {
-            b.skip(vtkCellName(type));
-        }
-        if (group != 0) b.markGroup(-1, group, nodes.data(), nodes.size());
+        addVtkCell(b, c, type, nodes.data(), nodes.size(), group, 0);
     }
 
     // per-cell arrays with 1 or 3 components, restricted to the volume cells (tets first, then hexes)
     if (cd) {
+        std::vector<double> values;
         for (int a = 0; a < cd->GetNumberOfArrays(); ++a) {
             vtkDataArray* arr = cd->GetArray(a);
             if (!arr || !arr->GetName() || arr->GetNumberOfTuples() != nCells) continue;
             const int nc = arr->GetNumberOfComponents();
             if (nc != 1 && nc != 3) continue;
-            std::vector<double> values;
-            values.reserve((tetCells.size() + hexCells.size()) * size_t(nc));
-            for (const auto* list : {&tetCells, &hexCells})
-                for (vtkIdType c : *list)
-                    for (int k = 0; k < nc; ++k) values.push_back(arr->GetComponent(c, k));
-            mesh.cellArrays[arr->GetName()] = std::move(values);
+            values.resize(size_t(nCells) * size_t(nc));
+            for (vtkIdType c = 0; c < nCells; ++c)
+                for (int k = 0; k < nc; ++k) values[size_t(c) * size_t(nc) + size_t(k)] = arr->GetComponent(c, k);
+            addVtkCellArray(b, arr->GetName(), nc, values.data());
         }
     }
 }
 
 } // namespace
 
-void readVtk(const std::string& path, bool xml, MeshBuilder& b) {
+void readVtu(const std::string& path, MeshBuilder& b) {
     checkReadable(path);
+    checkVtuHeaders(path);  // before VTK allocates what the file announces
     b.origin.elementWord = "cell";
     VtkMessageCatcher catcher;  // for the whole read: VTK prints nothing to the console
-    b.report->format = xml ? "VTK XML" : "VTK legacy";
-    const vtkSmartPointer<vtkUnstructuredGrid> grid = xml ? readXmlGrid(path, catcher) : readLegacyGrid(path, catcher);
+    b.report->format = "VTK XML";
+    const vtkSmartPointer<vtkUnstructuredGrid> grid = readXmlGrid(path, catcher);
     convertGrid(grid, path, b);
 }
 

@@ -229,3 +229,53 @@ TEST_CASE("An output folder that is a file or cannot be written gives exit code 
         CHECK_THAT(r.err, StartsWith("error: cannot write into output folder 'ro': "));
     }
 }
+
+namespace {
+
+/// The cube scene solved statically by DynamicRelaxation (line 7) with its attributes, held at the
+/// bottom and pulled at the top.
+std::string staticCube(const std::string& solverAttrs) {
+    std::string s = cube("dt=\"1\"", "1000", "", "",
+                         "  <FixedConstraint group=\"zmin\"/>\n  <ConstantForce group=\"zmax\" totalForce=\"0 0 5\"/>\n");
+    const std::string explicitLine = "<SemiImplicitEuler damping=\"20\"/>";
+    s.replace(s.find(explicitLine), explicitLine.size(), "<DynamicRelaxation name=\"dr\" " + solverAttrs + "/>");
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("A static solve prints one line per load step with printSteps and a summary line", "[fascia-run][DynamicRelaxation]") {
+    Workspace w;
+    w.write("s.xml", staticCube("printSteps=\"true\""));
+    auto r = w.run("s.xml --steps 2 --output out");
+    INFO(r.out + r.err);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Contains("DynamicRelaxation 'dr': load step 1 (t = 1 s): "));
+    CHECK_THAT(r.out, Contains("DynamicRelaxation 'dr': load step 2 (t = 2 s): 0 iterations"));
+    CHECK_THAT(r.out, Contains("DynamicRelaxation 'dr': 2 load steps, "));
+    CHECK_THAT(r.out, Contains("all converged"));
+    // without printSteps: the summary only
+    w.write("q.xml", staticCube(""));
+    auto q = w.run("q.xml --steps 2 --output out2");
+    CHECK(q.code == 0);
+    CHECK(q.out.find("load step 1") == std::string::npos);
+    CHECK_THAT(q.out, Contains("DynamicRelaxation 'dr': 2 load steps, "));
+}
+
+TEST_CASE("A static solve that does not converge within maxIterations warns at its line and exits 3 with its files",
+          "[fascia-run][DynamicRelaxation]") {
+    Workspace w;
+    w.write("s.xml", staticCube("maxIterations=\"3\""));
+    auto r = w.run("s.xml --steps 2 --output out");
+    INFO(r.out + r.err);
+    CHECK(r.code == 3);
+    CHECK_THAT(r.err, Contains("s.xml:7: warning: DynamicRelaxation 'dr': load step 1 (t = 1 s) did not converge in 3 "
+                               "iterations: residual "));
+    CHECK_THAT(r.err, Contains(", rate "));
+    CHECK_THAT(r.err, Contains("raise maxIterations"));
+    CHECK_THAT(r.err, Contains("fascia-run: the static solution did not converge"));
+    CHECK_THAT(r.out, Contains("2 load step(s) did not converge"));
+    // the run went on to its end and wrote its files
+    CHECK(w.filesIn("out") ==
+          std::vector<std::string>{"cube.pvd", "cube_000000.vtu", "cube_000001.vtu", "cube_000002.vtu", "curve.csv"});
+}

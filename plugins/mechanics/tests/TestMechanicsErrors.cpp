@@ -108,6 +108,38 @@ TEST_CASE("SurfacePressure refuses a mesh of another size than its state", "[Sur
                Contains("scene.xml:4: error: SurfacePressure 'p': the mesh source 'grid' has 8 points but the state 'mo' has 3 nodes"));
 }
 
+TEST_CASE("DynamicRelaxation refuses tolerances outside (0, 1) and maxIterations below 1 at their line",
+          "[DynamicRelaxation]") {
+    const auto [attr, text] = GENERATE(table<std::string, std::string>({
+        {"tolerance=\"0\"", "scene.xml:6: error: DynamicRelaxation 'dr': tolerance = 0 is outside (0, 1)"},
+        {"tolerance=\"1\"", "scene.xml:6: error: DynamicRelaxation 'dr': tolerance = 1 is outside (0, 1)"},
+        {"displacementTolerance=\"-1e-6\"", "scene.xml:6: error: DynamicRelaxation 'dr': displacementTolerance = -1e-06 is outside (0, 1)"},
+        {"maxIterations=\"0\"", "scene.xml:6: error: DynamicRelaxation 'dr': maxIterations = 0 is"},
+        {"damping=\"10\"", "scene.xml:6: error: DynamicRelaxation 'dr': unknown attribute 'damping'"}}));
+    CAPTURE(attr);
+    std::string xml = grid("<DynamicRelaxation name=\"dr\" " + attr + "/>");
+    xml.replace(xml.find("<SemiImplicitEuler/>"), 20, "");
+    CHECK_THAT(errorOf(xml), Contains(text));
+}
+
+TEST_CASE("DynamicRelaxation on a state with no elastic force field is a simulation error naming it",
+          "[DynamicRelaxation]") {
+    // a point cloud under gravity: nothing holds it, no static solution exists
+    auto sim = Simulation::fromString("<Node name=\"root\" dt=\"1\" gravity=\"0 0 -9.81\">\n"
+                                      "  <MechanicalObject name=\"mo\" position=\"0 0 0  1 0 0\"/>\n"
+                                      "  <LumpedMass totalMass=\"2\"/>\n"
+                                      "  <DynamicRelaxation name=\"dr\"/>\n"
+                                      "</Node>\n",
+                                      "scene.xml");
+    try {
+        sim->step();
+        FAIL("no error");
+    } catch (const Error& e) {
+        CHECK(e.kind() == fascia::core::ErrorKind::Simulation);
+        CHECK_THAT(e.what(), Contains("[/root/dr] step 1: the state 'mo' shows no stiffness"));
+    }
+}
+
 TEST_CASE("A FixedConstraint and a PrescribedDisplacement on one node and axis are a located error naming both",
           "[FixedConstraint][PrescribedDisplacement]") {
     // grid(): faces zmin (nodes 0-3) and xmin (nodes 0 2 4 6) share nodes 0 and 2

@@ -252,7 +252,7 @@ TEST_CASE("triangleGroup selects the physical group of a Gmsh file's triangles, 
 TEST_CASE("SurfacePressure input errors are located", "[SurfacePressure]") {
     SECTION("a triangle group on a hexahedral mesh") {
         CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" triangleGroup=\"1\"/>", "hexahedra")),
-                   Contains("scene.xml:6: error: SurfacePressure 'p': the mesh has no triangles, so no triangle groups"));
+                   Contains("scene.xml:6: error: SurfacePressure 'p': the mesh has no tetrahedra, so no triangle groups"));
     }
     SECTION("a node group the mesh does not have") {
         CHECK_THAT(errorOf(gridScene("<SurfacePressure name=\"p\" pressure=\"1\" nodeGroup=\"corner\"/>", "hexahedra")),

@@ -15,6 +15,8 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
@@ -288,13 +290,15 @@ void writeVtkLegacy(const std::string& path, const MeshData& m) {
     tmp().write(path, o.str());
 }
 
-/// Writes a grid with VTK's own XML writer (binary appended data unless ascii).
-std::string writeVtu(const std::string& name, vtkUnstructuredGrid* grid, bool ascii) {
+/// Writes a grid with VTK's own XML writer (binary appended data unless ascii; the appended data
+/// base64-encoded, VTK's default, unless raw).
+std::string writeVtu(const std::string& name, vtkUnstructuredGrid* grid, bool ascii, bool raw = false) {
     const std::string path = tmp().file(name);
     vtkNew<vtkXMLUnstructuredGridWriter> w;
     w->SetFileName(path.c_str());
     w->SetInputData(grid);
     if (ascii) w->SetDataModeToAscii();
+    if (raw) w->EncodeAppendedDataOff();
     REQUIRE(w->Write() == 1);
     return path;
 }
@@ -733,6 +737,11 @@ TEST_CASE("Bad Gmsh 1 and 4.1 files fail at the line of the problem", "[MeshLoad
         {"v41_missing_node", &v41, {{47, "6 1 4 7 9"}}, 47, {"element 6 names node 9"}},
         {"v41_malformed_entity", &v41, {{13, "1 0 0 x 1 1 0 1 2 0"}}, 13, {"malformed number 'x'"}},
         {"v41_block_too_big", &v41, {{44, "3 1 4 7"}}, 44, {"element block of 7 elements exceeds the 9 elements"}},
+        // counts that sum past INT64_MAX (signed overflow, found by UBSan): each is bounded by the file
+        {"v41_entity_counts_overflow", &v41, {{11, "9223372036854775807 9223372036854775807 1 1"}}, 11,
+         {"the $Entities header announces 9223372036854775807 entities of one dimension", "header is corrupt"}},
+        {"v41_entity_count_too_big", &v41, {{11, "1 0 1 100"}}, 11,
+         {"the $Entities header announces 100 entities of one dimension, more than the", "bytes left in the file"}},
     }));
     CAPTURE(c.label);
     const std::string path = tmp().write(c.label + ".msh", edited(*c.text, c.edits));
@@ -778,38 +787,200 @@ TEST_CASE("Bad TetGen files fail in the right file at the line of the problem", 
     }
 }
 
-TEST_CASE("Bad VTK files fail with VTK's reason and no console output", "[MeshLoader][errors]") {
+TEST_CASE("Bad VTK files fail with a located reason and no console output", "[MeshLoader][errors]") {
     SECTION("not a VTK file") {
         const std::string p = tmp().write("garbage.vtk", "hello\n");
-        requireLocatedError(p, p, 0, {"not a VTK legacy file", "DATASET UNSTRUCTURED_GRID"});
+        requireLocatedError(p, p, 1, {"not a VTK legacy file", "DATASET UNSTRUCTURED_GRID"});
     }
     SECTION("polygonal data, not a grid") {
         const std::string p = tmp().write(
             "poly.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
                         "POLYGONS 1 4\n3 0 1 2\n");
-        requireLocatedError(p, p, 0, {"vtkPolyData", "only DATASET UNSTRUCTURED_GRID"});
+        requireLocatedError(p, p, 4, {"vtkPolyData", "only DATASET UNSTRUCTURED_GRID"});
     }
     SECTION("a truncated legacy file") {
         const std::string p = tmp().write("cut.vtk", edited(slurp(kData + "cube.vtk"), {}, 10));
-        requireLocatedError(p, p, 0, {"VTK could not read", "Error reading"});
+        // 5 of the 8 points are left: refused from the count, before reading them
+        requireLocatedError(p, p, 5, {"POINTS: the file announces 8 x 3 values, more than the 31 bytes left", "truncated"});
     }
     SECTION("a cell names a missing point") {
         const std::string p = tmp().write("badcell.vtk", edited(slurp(kData + "cube.vtk"), {{15, "4 0 1 3 40"}}));
-        requireLocatedError(p, p, 0, {"cell 0 names point 40", "8 points"});
+        requireLocatedError(p, p, 15, {"cell 0 names point 40", "8 points"});
     }
     SECTION("an inverted cell") {
         const std::string p = tmp().write("invcell.vtk", edited(slurp(kData + "cube.vtk"), {{16, "4 2 1 3 6"}}));
-        requireLocatedError(p, p, 0, {"cell 1 (a tetrahedron) is inverted", "fixOrientation"});
+        requireLocatedError(p, p, 16, {"cell 1 (a tetrahedron) is inverted", "fixOrientation"});
     }
     SECTION("a truncated .vtu") {
         vtkNew<vtkUnstructuredGrid> g = cubeGrid();
         const std::string full = slurp(writeVtu("whole.vtu", g, true));
-        const std::string p = tmp().write("cut.vtu", full.substr(0, full.size() / 2));
-        requireLocatedError(p, p, 0, {"VTK could not read", "XML"});
+        const std::string cut = full.substr(0, full.size() / 2);
+        const std::string p = tmp().write("cut.vtu", cut);
+        // the half left holds the point and cell data, not the Points array (VTK writes it after them)
+        REQUIRE(cut.find("<Points>") == std::string::npos);
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(cut.find("<Piece")) + ": the Piece announces 8 points "
+                                      "but has no Points array: the file is incomplete or truncated"});
     }
     SECTION("not a .vtu") {
         const std::string p = tmp().write("garbage.vtu", "<html></html>\n");
         requireLocatedError(p, p, 0, {"not a VTK XML unstructured grid"});
+    }
+}
+
+/// Byte offset of the '<' of the first tag of text that holds `inside`.
+size_t tagOffset(const std::string& text, const std::string& inside) {
+    const size_t at = text.find(inside);
+    REQUIRE(at != std::string::npos);
+    return text.rfind('<', at);
+}
+
+TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK allocates", "[MeshLoader][errors]") {
+    vtkNew<vtkUnstructuredGrid> g = cubeGrid();
+    SECTION("a compressed block header announcing 2.3 GB (VTK's ReadBlock crashed on it)") {
+        std::string text = slurp(writeVtu("cube_z.vtu", g, false, true));
+        REQUIRE(text.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+        const bool h64 = text.find("header_type=\"UInt64\"") != std::string::npos;
+        const size_t data = text.find('_', text.find("<AppendedData")) + 1;
+        const size_t w = h64 ? 8 : 4;
+        const unsigned long long big = 2300000000ULL;
+        for (size_t word : {1, 2})  // the block size and the last block's size, little-endian
+            for (size_t k = 0; k < w; ++k) text[data + word * w + k] = char(k < 8 ? (big >> (8 * k)) & 0xFF : 0);
+        const std::string p = tmp().write("cube_bigblock.vtu", text);
+        const size_t at = tagOffset(text, "offset=\"0\"");
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(at) + ": compressed block 0 announces 2300000000 bytes from",
+                                      "more than any compressor expands"});
+    }
+    SECTION("a compressed header announcing more blocks than the file holds") {
+        std::string text = slurp(writeVtu("cube_z2.vtu", g, false, true));
+        const size_t data = text.find('_', text.find("<AppendedData")) + 1;
+        for (size_t k = 0; k < 4; ++k) text[data + k] = char(0x7F);  // the block count
+        const std::string p = tmp().write("cube_blocks.vtu", text);
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(tagOffset(text, "offset=\"0\"")) + ": the compressed data header announces",
+                                      "blocks, more than the file holds"});
+    }
+    SECTION("NumberOfPoints larger than the Points array") {
+        std::string text = slurp(writeVtu("cube_a.vtu", g, true));
+        const size_t at = text.find("NumberOfPoints=\"8\"");
+        REQUIRE(at != std::string::npos);
+        text.replace(at, 18, "NumberOfPoints=\"800000000000\"");
+        const std::string p = tmp().write("cube_points.vtu", text);
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(tagOffset(text, "Name=\"Points\"")) + ": DataArray 'Points' of Points holds 24 values",
+                                      "NumberOfPoints 800000000000 needs 2400000000000"});
+    }
+    SECTION("a Piece with points but no Points array") {
+        std::string text = slurp(writeVtu("cube_np.vtu", g, true));
+        const size_t b = text.find("<Points>"), e = text.find("</Points>");
+        REQUIRE((b != std::string::npos && e != std::string::npos));
+        text.erase(b, e + 9 - b);
+        const std::string p = tmp().write("cube_nopoints.vtu", text);
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(text.find("<Piece")) +
+                                      ": the Piece announces 8 points but has no Points array"});
+    }
+    SECTION("a cell type array shorter than the cells") {
+        std::string text = slurp(writeVtu("cube_t.vtu", g, true));
+        const size_t tag = tagOffset(text, "Name=\"types\"");
+        const size_t body = text.find('>', tag) + 1;
+        const size_t last = text.find_last_of("0123456789", text.find('<', body));  // drop the last type
+        text.erase(last, 1);
+        const std::string p = tmp().write("cube_types.vtu", text);
+        requireLocatedError(p, p, 0, {"byte " + std::to_string(tag) + ": DataArray 'types' of Cells holds 7 values",
+                                      "NumberOfCells 8 needs 8"});
+    }
+}
+
+/// What the VTK-based legacy reader of earlier versions made of a .vtk file: VTK's own legacy
+/// reader, then the conversion it used (kept cells, groups, 1- and 3-component cell arrays).
+MeshData viaVtkLegacyReader(const std::string& path) {
+    vtkNew<vtkUnstructuredGridReader> r;
+    r->SetFileName(path.c_str());
+    r->Update();
+    vtkUnstructuredGrid* grid = r->GetOutput();
+    REQUIRE(grid);
+    MeshData m;
+    for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) {
+        double x[3];
+        grid->GetPoint(i, x);
+        m.points.emplace_back(x[0], x[1], x[2]);
+    }
+    const vtkIdType nCells = grid->GetNumberOfCells();
+    vtkDataArray* groups = nullptr;
+    for (const char* gname : {"gmsh:physical", "CellEntityIds"}) {
+        vtkDataArray* a = grid->GetCellData()->GetArray(gname);
+        if (!groups && a && a->GetNumberOfComponents() == 1 && a->GetNumberOfTuples() == nCells) groups = a;
+    }
+    std::vector<vtkIdType> tets, hexes;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < nCells; ++c) {
+        grid->GetCellPoints(c, ids);
+        std::vector<int> n;
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) n.push_back(int(ids->GetId(k)));
+        const int group = groups ? int(std::lround(groups->GetComponent(c, 0))) : 0;
+        const int type = grid->GetCellType(c);
+        if (type == VTK_TETRA) {
+            m.tetrahedra.push_back({n[0], n[1], n[2], n[3]});
+            m.tetrahedronGroup.push_back(group);
+            tets.push_back(c);
+        } else if (type == VTK_HEXAHEDRON || type == VTK_VOXEL) {
+            m.hexahedra.push_back(type == VTK_VOXEL ? std::array<int, 8>{n[0], n[1], n[3], n[2], n[4], n[5], n[7], n[6]}
+                                                    : std::array<int, 8>{n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]});
+            m.hexahedronGroup.push_back(group);
+            hexes.push_back(c);
+        } else if (type == VTK_TRIANGLE) {
+            m.triangles.push_back({n[0], n[1], n[2]});
+            m.triangleGroup.push_back(group);
+        }
+    }
+    vtkCellData* cd = grid->GetCellData();
+    for (int a = 0; a < cd->GetNumberOfArrays(); ++a) {
+        vtkDataArray* arr = cd->GetArray(a);
+        if (!arr || !arr->GetName() || arr->GetNumberOfTuples() != nCells) continue;
+        const int nc = arr->GetNumberOfComponents();
+        if (nc != 1 && nc != 3) continue;
+        auto& v = m.cellArrays[arr->GetName()];
+        for (const auto* list : {&tets, &hexes})
+            for (vtkIdType c : *list)
+                for (int k = 0; k < nc; ++k) v.push_back(arr->GetComponent(c, k));
+    }
+    return m;
+}
+
+std::string writeVtkWithVtk(const std::string& name, vtkUnstructuredGrid* grid, bool binary, int version) {
+    const std::string path = tmp().file(name);
+    vtkNew<vtkUnstructuredGridWriter> w;
+    w->SetFileName(path.c_str());
+    w->SetInputData(grid);
+    if (binary) w->SetFileTypeToBinary();
+    w->SetFileVersion(version);
+    REQUIRE(w->Write() == 1);
+    return path;
+}
+
+TEST_CASE("Our legacy VTK reader gives the MeshData VTK's legacy reader gave, in ASCII, BINARY and 5.1", "[MeshLoader]") {
+    const MeshData organ = readMesh(kMeshes + "organ_2428.msh");
+    writeVtkLegacy("organ_hand.vtk", organ);
+    vtkNew<vtkUnstructuredGrid> organGrid = toVtkGrid(organ);
+    vtkNew<vtkUnstructuredGrid> cube = cubeGrid();
+    std::vector<std::string> files = {kData + "cube.vtk", tmp().file("organ_hand.vtk")};
+    for (int version : {vtkDataWriter::VTK_LEGACY_READER_VERSION_4_2, vtkDataWriter::VTK_LEGACY_READER_VERSION_5_1})
+        for (bool binary : {false, true}) {
+            const std::string tag = std::to_string(version) + (binary ? "b" : "a");
+            files.push_back(writeVtkWithVtk("cube_" + tag + ".vtk", cube, binary, version));
+            files.push_back(writeVtkWithVtk("organ_" + tag + ".vtk", organGrid, binary, version));
+        }
+    for (const auto& f : files) {
+        CAPTURE(f);
+        const MeshData want = viaVtkLegacyReader(f);
+        ReadReport report;
+        const MeshData got = readMesh(f, {}, &report);
+        CHECK(report.format == "VTK legacy");
+        CHECK(got.points == want.points);
+        CHECK(got.tetrahedra == want.tetrahedra);
+        CHECK(got.hexahedra == want.hexahedra);
+        CHECK(got.triangles == want.triangles);
+        CHECK(got.tetrahedronGroup == want.tetrahedronGroup);
+        CHECK(got.triangleGroup == want.triangleGroup);
+        CHECK(got.cellArrays == want.cellArrays);
+        CHECK(!want.tetrahedra.empty());
     }
 }
 

@@ -165,6 +165,12 @@ inline const double* flat(const Positions& p) { return p.empty() ? nullptr : p.d
 class BaseIntegrator : public Component {
 public:
     virtual void step(MechanicalGroup& group, double t, double dt) = 0;
+    /// One line on what the run did, for fascia-run's summary ("" when there is nothing to say,
+    /// as for the explicit integrators; a static solver reports its load steps and iterations).
+    virtual std::string runSummary() const { return {}; }
+    /// True when the run did not do what it was asked (a static solver with a load step that did
+    /// not converge): fascia-run then exits 3 after writing its files.
+    virtual bool runFailed() const { return false; }
     /// The largest time step (s) for which it is stable on a group whose force fields give the
     /// critical step `critical` (the smallest BaseForceField::stableTimeStep, central difference's
     /// limit 2 / omega_max; infinity when no force field limits the step). dt="auto" is the smallest

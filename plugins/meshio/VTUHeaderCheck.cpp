@@ -1,0 +1,247 @@
+// Checks of a .vtu's announced sizes before VTK allocates them (see VTUHeaderCheck.h). The XML part
+// is scanned for its VTKFile, Piece, Points/Cells/PointData/CellData and DataArray tags; the data
+// headers are decoded where they are (inline base64, appended raw or base64).
+#include "VTUHeaderCheck.h"
+
+#include "ReaderSupport.h"
+
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fascia::meshio::detail {
+namespace {
+
+/// Deflate (ZLib) expands at most 1032:1 and LZ4 at most 255:1; LZMA has no such bound in theory,
+/// but a mesh block that expands more than this is no mesh.
+constexpr unsigned long long kMaxExpansion = 1032;
+
+class VtuChecker {
+public:
+    VtuChecker(const std::string& text, const std::string& path) : m_t(text), m_path(path) {}
+
+    void run() {
+        const size_t appended = m_t.find("<AppendedData");
+        const std::string_view xml = std::string_view(m_t).substr(0, appended);
+        if (appended != std::string::npos) appendedStart(appended);
+        std::string context;
+        for (size_t p = xml.find('<'); p != std::string_view::npos; p = xml.find('<', p + 1)) {
+            const size_t e = xml.find('>', p);
+            if (e == std::string_view::npos) break;
+            const std::string_view tag = xml.substr(p + 1, e - p - 1);
+            const std::string name(tag.substr(0, tag.find_first_of(" \t\r\n/>")));
+            if (name == "VTKFile") {
+                m_header64 = attribute(tag, "header_type") == "UInt64";
+                m_compressed = !attribute(tag, "compressor").empty();
+                m_bigEndian = attribute(tag, "byte_order") == "BigEndian";
+            } else if (name == "Piece") {
+                pieceEnd();
+                m_pieceAt = p;
+                m_points = count(tag, "NumberOfPoints", p);
+                m_cells = count(tag, "NumberOfCells", p);
+            } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
+                       name == "FieldData") {
+                context = name;
+            } else if (name == "DataArray") {
+                dataArray(tag, context, p, e + 1);
+            }
+        }
+        pieceEnd();
+    }
+
+private:
+    [[noreturn]] void failAt(size_t at, const std::string& message) const {
+        fail(m_path, 0, "byte " + std::to_string(at) + ": " + message);
+    }
+    static std::string attribute(std::string_view tag, const char* key) {
+        const std::string k = std::string(" ") + key + "=\"";
+        size_t p = tag.find(k);
+        if (p == std::string_view::npos) {
+            const std::string k2 = std::string("\t") + key + "=\"";
+            p = tag.find(k2);
+            if (p == std::string_view::npos) return {};
+        }
+        p += k.size();
+        const size_t e = tag.find('"', p);
+        return std::string(tag.substr(p, e == std::string_view::npos ? std::string_view::npos : e - p));
+    }
+    unsigned long long count(std::string_view tag, const char* key, size_t at) const {
+        const std::string v = attribute(tag, key);
+        unsigned long long n = 0;
+        const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+        if (v.empty() || ec != std::errc() || ptr != v.data() + v.size())
+            failAt(at, std::string("the Piece's ") + key + " " + quoted(v) + " is not a whole number >= 0");
+        return n;
+    }
+    static int typeBytes(const std::string& type) {
+        if (type == "Int8" || type == "UInt8") return 1;
+        if (type == "Int16" || type == "UInt16") return 2;
+        if (type == "Int32" || type == "UInt32" || type == "Float32") return 4;
+        if (type == "Int64" || type == "UInt64" || type == "Float64") return 8;
+        return 0;
+    }
+    /// A Piece with points needs a Points array, one with cells a cell types array.
+    void pieceEnd() {
+        if (m_points > 0 && !m_havePoints)
+            failAt(m_pieceAt, "the Piece announces " + std::to_string(m_points) + " points but has no Points array: the file is incomplete or truncated");
+        if (m_cells > 0 && !m_haveTypes)
+            failAt(m_pieceAt, "the Piece announces " + std::to_string(m_cells) + " cells but has no cell types array: the file is incomplete or truncated");
+        m_points = m_cells = 0;
+        m_havePoints = m_haveTypes = false;
+    }
+    void appendedStart(size_t tagAt) {
+        const size_t u = m_t.find('_', tagAt);
+        if (u == std::string::npos) failAt(tagAt, "<AppendedData> has no '_' before its data");
+        m_appended = u + 1;
+        const size_t tagEnd = m_t.find('>', tagAt);
+        m_appendedBase64 = attribute(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "encoding") == "base64";
+    }
+
+    /// Header words of the data at `at` (raw bytes, or base64 text when base64), n words of the
+    /// header type; fails when they pass `end`.
+    std::vector<unsigned long long> words(size_t at, size_t end, bool base64, size_t n, size_t where) const {
+        const size_t w = m_header64 ? 8 : 4;
+        std::string bytes;
+        if (!base64) {
+            if (at > end || n > (end - at) / w) failAt(where, "the data header passes the end of the file: it is truncated");
+            bytes = m_t.substr(at, n * w);
+        } else {
+            bytes = decodeBase64(at, end, n * w, where);
+        }
+        std::vector<unsigned long long> out(n);
+        for (size_t i = 0; i < n; ++i) {
+            unsigned long long v = 0;
+            for (size_t k = 0; k < w; ++k) {
+                const auto byte = (unsigned char)bytes[i * w + (m_bigEndian ? k : w - 1 - k)];
+                v = (v << 8) | byte;
+            }
+            out[i] = v;
+        }
+        return out;
+    }
+    std::string decodeBase64(size_t at, size_t end, size_t want, size_t where) const {
+        std::string out;
+        unsigned buf = 0;
+        int bits = 0;
+        for (size_t p = at; p < end && out.size() < want; ++p) {
+            const char c = m_t[p];
+            int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
+                    : c == '+' ? 62 : c == '/' ? 63 : -1;
+            if (v < 0) {
+                if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+                break;  // padding or the end of the data
+            }
+            buf = (buf << 6) | unsigned(v);
+            bits += 6;
+            if (bits >= 8) {
+                bits -= 8;
+                out += char((buf >> bits) & 0xFF);
+            }
+        }
+        if (out.size() < want) failAt(where, "the base64 data header is shorter than its " + std::to_string(want) + " bytes");
+        return out;
+    }
+
+    /// Uncompressed bytes the data at `at` announces, checked against what is stored up to `end`.
+    unsigned long long announcedBytes(size_t at, size_t end, bool base64, size_t where) const {
+        const size_t w = m_header64 ? 8 : 4;
+        const unsigned long long stored = base64 ? (end - at) / 4 * 3 : end - at;  // bytes the file holds there
+        if (!m_compressed) {
+            const unsigned long long n = words(at, end, base64, 1, where)[0];
+            if (n > stored) failAt(where, "the data header announces " + std::to_string(n) + " bytes, but only " +
+                                              std::to_string(stored) + " follow in the file: the header lies or the file is truncated");
+            return n;
+        }
+        const auto h = words(at, end, base64, 3, where);
+        const unsigned long long blocks = h[0], blockSize = h[1], last = h[2];
+        if (blocks > stored / w) failAt(where, "the compressed data header announces " + std::to_string(blocks) +
+                                                   " blocks, more than the file holds: the header is corrupt");
+        if (blocks == 0) return 0;
+        const auto sizes = words(at, end, base64, 3 + size_t(blocks), where);
+        unsigned long long compressed = 0, total = 0;
+        for (unsigned long long b = 0; b < blocks; ++b) {
+            const unsigned long long c = sizes[size_t(3 + b)];
+            const unsigned long long u = (b + 1 == blocks && last != 0) ? last : blockSize;
+            if (c > stored) failAt(where, "compressed block " + std::to_string(b) + " announces " + std::to_string(c) +
+                                              " bytes, more than the file holds: the header is corrupt");
+            compressed += c;
+            if (u > kMaxExpansion * c + 64)
+                failAt(where, "compressed block " + std::to_string(b) + " announces " + std::to_string(u) +
+                                  " bytes from " + std::to_string(c) + " compressed ones, more than any compressor "
+                                  "expands: the header is corrupt");
+            total += u;
+        }
+        if (compressed > stored) failAt(where, "the compressed blocks announce " + std::to_string(compressed) +
+                                                   " bytes, but only " + std::to_string(stored) + " follow in the file");
+        return total;
+    }
+
+    void dataArray(std::string_view tag, const std::string& context, size_t at, size_t bodyStart) {
+        const std::string name = attribute(tag, "Name"), format = attribute(tag, "format");
+        const std::string comps = attribute(tag, "NumberOfComponents");
+        unsigned long long nc = 1;
+        if (!comps.empty() && (std::from_chars(comps.data(), comps.data() + comps.size(), nc).ec != std::errc() || nc == 0))
+            failAt(at, "DataArray " + quoted(name) + " has NumberOfComponents " + quoted(comps));
+        long long tuples = -1;  // unknown for connectivity and faces
+        if (context == "Points" || context == "PointData") tuples = (long long)m_points;
+        else if (context == "CellData" || (context == "Cells" && (name == "types" || name == "offsets")))
+            tuples = (long long)m_cells;
+        if (context == "Points") m_havePoints = true;
+        if (context == "Cells" && name == "types") m_haveTypes = true;
+        const int tb = typeBytes(attribute(tag, "type"));
+        unsigned long long values = 0;
+        bool known = true;
+        if (format == "ascii" && tb > 0) {  // numbers only: a string array has its own layout
+            const size_t close = m_t.find('<', bodyStart);
+            values = asciiValues(bodyStart, close == std::string::npos ? m_t.size() : close);
+        } else if (format == "binary" && tb > 0) {
+            const size_t close = m_t.find('<', bodyStart);
+            size_t s = bodyStart;
+            while (s < m_t.size() && (m_t[s] == ' ' || m_t[s] == '\n' || m_t[s] == '\r' || m_t[s] == '\t')) ++s;
+            values = announcedBytes(s, close == std::string::npos ? m_t.size() : close, true, at) / unsigned(tb);
+        } else if (format == "appended" && tb > 0) {
+            if (m_appended == 0) failAt(at, "DataArray " + quoted(name) + " is appended, but the file has no <AppendedData>");
+            unsigned long long off = 0;
+            const std::string o = attribute(tag, "offset");
+            if (std::from_chars(o.data(), o.data() + o.size(), off).ec != std::errc() || off > m_t.size() - m_appended)
+                failAt(at, "DataArray " + quoted(name) + " has the offset " + quoted(o) + ", past the end of the appended data");
+            values = announcedBytes(m_appended + size_t(off), m_t.size(), m_appendedBase64, at) / unsigned(tb);
+        } else {
+            known = false;  // a type or format VTK itself will judge
+        }
+        if (known && tuples >= 0 && values != (unsigned long long)tuples * nc)
+            failAt(at, "DataArray " + quoted(name) + " of " + context + " holds " + std::to_string(values) +
+                           " values, but the Piece's " + (tuples == (long long)m_points && context.find("Point") == 0 ? "NumberOfPoints " : "NumberOfCells ") +
+                           std::to_string(tuples) + " needs " + std::to_string((unsigned long long)tuples * nc) +
+                           " (" + std::to_string(nc) + " per tuple): the counts lie or the file is truncated");
+    }
+    unsigned long long asciiValues(size_t b, size_t e) const {
+        unsigned long long n = 0;
+        bool in = false;
+        for (size_t p = b; p < e; ++p) {
+            const char c = m_t[p];
+            const bool space = c == ' ' || c == '\n' || c == '\r' || c == '\t';
+            if (!space && !in) ++n;
+            in = !space;
+        }
+        return n;
+    }
+
+    const std::string& m_t;
+    const std::string& m_path;
+    bool m_header64 = false, m_compressed = false, m_bigEndian = false, m_appendedBase64 = false;
+    unsigned long long m_points = 0, m_cells = 0;
+    size_t m_appended = 0, m_pieceAt = 0;
+    bool m_havePoints = false, m_haveTypes = false;
+};
+
+} // namespace
+
+void checkVtuHeaders(const std::string& path) {
+    const std::string text = readWholeFile(path, true);
+    VtuChecker(text, path).run();
+}
+
+} // namespace fascia::meshio::detail
