@@ -195,7 +195,7 @@ void HEMLForceField::precompute(const Positions& rest) {
     d.nElements = ne;
 
     // node order
-    // reverse Cuthill-McKee (docs/performance.md, lessons: node order): internal -> input node
+    // reverse Cuthill-McKee (docs/performance.md, lesson 5): internal -> input node
     d.nodeOf = elements::reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
     d.internalOf.assign(n, 0);
     for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);

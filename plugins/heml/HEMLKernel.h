@@ -17,7 +17,7 @@ namespace fascia::heml {
 using simd::DVec;
 using simd::IVec;
 
-/// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lessons: short passes over batches).
+/// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lesson 3).
 constexpr int kLanes = 16;
 /// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
 /// the mesh only, never on the thread count (docs/design.md, determinism).
@@ -61,7 +61,7 @@ struct HEMLData {
     /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
     /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
     /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
-    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lessons: bytes per element).
+    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lesson 7).
     DVec G[6];
     DVec w4[3], w6[3];     ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
     DVec kk[6], len0[6];   ///< mass-spring mode: stiffness share and rest length per edge
@@ -368,7 +368,7 @@ double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
     const bool useI6 = (uses & materials::BaseMaterial::UsesI6) != 0;
     for (size_t e0 = b.begin; e0 < b.end; e0 += kLanes) {
         // gather the four nodes of each element (node rows padded to 4 doubles, in-register
-        // transposes: docs/performance.md, lessons: SIMD gather)
+        // transposes: docs/performance.md, lesson 2)
         for (int j = 0; j < kLanes; j += 4)
             for (int a = 0; a < 4; ++a)
                 simd::gather4(xin, d.node[a].data() + e0 + j, 1, &c.px[a][0][j], &c.px[a][1][j], &c.px[a][2][j]);

@@ -33,7 +33,7 @@ struct Block {
 /// element (AoS), then packed by finish() batch by batch: the batch in slot m (the blocks' batches
 /// in order, see Block::batchBase and batchOffset) holds its rows one after the other, row r at
 /// pack[(m rows + r) kBatch + k] for element k of the batch. A batch's data is then one contiguous
-/// stream at constant offsets from one pointer (docs/performance.md, lessons: packed element data).
+/// stream at constant offsets from one pointer (docs/performance.md, lesson 2).
 template <int NN>
 struct ElementSet {
     /// rows of the pack: dN_a/dX (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3)), then

@@ -93,8 +93,7 @@ size_t rowsFor(const Impl& im, const Setup& su, const std::vector<int>& internal
 /// their elements use, so they need elements that share nodes with close indices. The file's order
 /// is kept unless its buffers are more than twice those of a reverse Cuthill-McKee numbering of the
 /// nodes (over both kinds) with each group's elements sorted by their lowest node in it (a Gmsh
-/// file's order can give blocks whose buffers span every node; docs/performance.md, lessons: node
-/// order).
+/// file's order can give blocks whose buffers span every node; docs/performance.md, lesson 5).
 void chooseNodeOrder(Impl& im, Setup& su) {
     su.internalOf.resize(im.nodeCount);
     std::iota(su.internalOf.begin(), su.internalOf.end(), 0);
@@ -135,8 +134,7 @@ void chooseNodeOrder(Impl& im, Setup& su) {
 
 /// Tetrahedra: within each block, the 4 elements of a SIMD quad come from the 4 quarters of the
 /// block, so that they share no node: neighbouring tetrahedra would otherwise add to the same node
-/// row back to back in the scatter and wait on each other's stores (docs/performance.md, lessons:
-/// scatter conflicts; no gain for hexahedra).
+/// row back to back in the scatter and wait on each other's stores (docs/performance.md, lesson 10; no gain for hexahedra).
 void interleaveQuads(const Impl& im, Setup& su) {
     for (size_t gi = 0; gi < im.groups.size(); ++gi) {
         if (im.groups[gi].kind != 0) continue;

@@ -1,7 +1,7 @@
 #pragma once
 /// Internal to TLEDForceField: the element loop of one block (TLED eq. (1)-(3), (10), (24), (30)),
 /// a short driver over inline stages that each run one vectorised pass over a batch of kBatch
-/// elements (docs/performance.md, lessons: short passes over batches):
+/// elements (docs/performance.md, lesson 3):
 ///   gather u -> gradient and invariants (F, C, I1, I2, J, I4, I6; hexahedra: hourglass modes)
 ///   -> the law (W and dW/dI for the whole batch) -> stress (P directly; or S, relaxed by the
 ///   Prony series, then P = F S) -> energy -> nodal forces f_a = -V P dN_a/dX -> scatter.
@@ -346,7 +346,7 @@ FASCIA_INLINE void scatter(const Batch<NN>& s, int n, const ElementSet<NN>& es, 
 
 /// Prefetches the element data two batches ahead (at the block's start, the next one too): a batch
 /// reads its data as short streams that the hardware prefetchers pick up late; and, with viscosity,
-/// the next batch's states (docs/performance.md, lessons: software prefetch).
+/// the next batch's states (docs/performance.md, lesson 11).
 template <int NN>
 FASCIA_INLINE void prefetchAhead(const Impl& im, const ElementSet<NN>& es, const Block& b, size_t e0, const double* G,
                                  bool visco, const KernelIO& io, size_t batch) {

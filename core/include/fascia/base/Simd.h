@@ -2,7 +2,7 @@
 /// Helpers shared by the element loops of the force fields (HEML, TLED and plugins): 64-byte
 /// aligned storage, and the move of node data between node rows (4 doubles per node, the 4th is
 /// padding) and structure-of-arrays batches of elements with in-register transposes
-/// (hardware gathers and masked scatters are slower here: docs/performance.md, lessons: SIMD gather).
+/// (hardware gathers and masked scatters are slower here: docs/performance.md, lesson 2).
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>

@@ -15,7 +15,7 @@ struct ElementNodes {
 };
 
 /// Reverse Cuthill-McKee order of nodes 0..n-1, two nodes being neighbours when an element of the
-/// lists holds both (docs/performance.md, lessons: node order): entry i is the input node placed at position i. Each
+/// lists holds both (docs/performance.md, lesson 5): entry i is the input node placed at position i. Each
 /// connected part starts from a pseudo-peripheral node (the least connected of the last BFS level
 /// from its least connected node); neighbours are visited by increasing degree. Deterministic.
 std::vector<int> reverseCuthillMcKee(size_t n, std::initializer_list<ElementNodes> elements);

@@ -1,8 +1,7 @@
 #pragma once
 /// The small 3x3 vocabulary of the element loops, templated on the scalar type T (double on the
 /// CPU; float or double in device code later) and written with named scalars, not arrays, so that
-/// the batch loops keep everything in registers (docs/performance.md, lessons: vectorised element
-/// loops).
+/// the batch loops keep everything in registers (docs/performance.md, lessons 1 and 3).
 ///   Mat33<T>  a general 3x3 matrix, row-major (deformation gradient F, cofactor, P);
 ///   Sym33<T>  a symmetric one in Voigt order xx yy zz xy yz xz (C, B, S, Cauchy stress).
 /// With the law's Response (fascia/materials/Material.h) the second Piola-Kirchhoff stress is

@@ -30,7 +30,7 @@
 /// to its Cartesian nodal forces: the same recurrence, but objective (a rigid rotation of a
 /// stressed body does not relax). The history advances once per step (committed at beginStep).
 ///
-/// Performance (docs/performance.md, lessons: no libm, SIMD gather, short passes, block buffers, node order): elements as structure of arrays (80 bytes each) in
+/// Performance (docs/performance.md, lessons 1 to 5): elements as structure of arrays (80 bytes each) in
 /// blocks of about 1024 (the block count depends on the mesh only, never on the thread count);
 /// nodes renumbered internally by reverse Cuthill-McKee (the state's order is unchanged) and the
 /// elements sorted along it; each block copies its nodes' positions into its own rows (4 doubles,

@@ -9,7 +9,7 @@
 /// with W from the shared material library (fascia/materials/Laws.h), so every law runs here and
 /// in HEMLForceField unchanged. Without viscosity P is formed directly as
 ///   P = 2 dI1 F + 2 dI2 (I1 F - F C) + 2 dI4 (F a0)(x)a0 + 2 dI6 (F b0)(x)b0 + (dJiso + dJvol) cof F
-/// (F J C^-1 = cof F), which needs no inverse and no division (docs/performance.md, lessons: no libm, no division).
+/// (F J C^-1 = cof F), which needs no inverse and no division (docs/performance.md, lesson 1).
 ///
 /// Elements
 /// - 4-node tetrahedra: constant derivatives, V = |det[X1-X0, X2-X0, X3-X0]| / 6 (TLED eq. (3)).
