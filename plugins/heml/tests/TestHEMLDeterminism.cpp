@@ -8,6 +8,8 @@
 #include "HEMLTestSupport.h"
 #include "fascia/viscoelastic/ViscoelasticProny.h"
 
+#include "fascia/materials/Conformance.h"
+
 #include <catch2/catch.hpp>
 
 #include <omp.h>
@@ -19,18 +21,8 @@ using namespace hemltest;
 
 namespace {
 
-// a material that is not a Material<Law>: runs the batched (generic) path
-struct Wrapped : materials::BaseMaterial {
-    const materials::BaseMaterial* inner = nullptr;
-    unsigned uses() const override { return inner->uses(); }
-    void evaluate(const materials::Invariants* in, materials::Response* out, size_t n, double J0) const override {
-        inner->evaluate(in, out, n, J0);
-    }
-    double shearModulus() const override { return inner->shearModulus(); }
-    double bulkModulus() const override { return inner->bulkModulus(); }
-    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
-    bool stressFreeAtRest() const override { return inner->stressFreeAtRest(); }
-};
+// a material that is not a Material<Law>: the force field runs its generic loop for it
+using Wrapped = materials::conformance::GenericMaterial;
 
 struct Run {
     Positions f1;     // forces of the first step

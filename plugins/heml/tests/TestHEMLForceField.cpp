@@ -62,18 +62,8 @@ Positions deformed(const Positions& X, double amp, unsigned seed = 3) {
     return x;
 }
 
-// a material that is not a Material<Law>: runs the batched (generic) path
-struct Wrapped : materials::BaseMaterial {
-    const materials::BaseMaterial* inner = nullptr;
-    unsigned uses() const override { return inner->uses(); }
-    void evaluate(const materials::Invariants* in, materials::Response* out, size_t n, double J0) const override {
-        inner->evaluate(in, out, n, J0);
-    }
-    double shearModulus() const override { return inner->shearModulus(); }
-    double bulkModulus() const override { return inner->bulkModulus(); }
-    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
-    bool stressFreeAtRest() const override { return inner->stressFreeAtRest(); }
-};
+// a material that is not a Material<Law>: the force field runs its generic loop for it
+using Wrapped = materials::conformance::GenericMaterial;
 
 } // namespace
 

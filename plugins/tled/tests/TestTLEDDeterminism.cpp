@@ -10,6 +10,8 @@
 #include "../../materials/tests/LawReference.h"
 #include "TLEDTestSupport.h"
 
+#include "fascia/materials/Conformance.h"
+
 #include <catch2/catch.hpp>
 
 #include <omp.h>
@@ -22,18 +24,8 @@ using namespace tledtest;
 
 namespace {
 
-// a material that is not a Material<Law>: the force field evaluates it in batches through the
-// virtual interface
-struct Wrapped : materials::BaseMaterial {
-    const materials::BaseMaterial* inner = nullptr;
-    unsigned uses() const override { return inner->uses(); }
-    void evaluate(const materials::Invariants* in, materials::Response* out, size_t n, double J0) const override {
-        inner->evaluate(in, out, n, J0);
-    }
-    double shearModulus() const override { return inner->shearModulus(); }
-    double bulkModulus() const override { return inner->bulkModulus(); }
-    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
-};
+// a material that is not a Material<Law>: the force field runs its generic loop for it
+using Wrapped = materials::conformance::GenericMaterial;
 
 struct Run {
     Positions f1, x;

@@ -5,6 +5,8 @@
 
 #include "fascia/base/Error.h"
 
+#include "fascia/materials/Conformance.h"
+
 #include <catch2/catch.hpp>
 
 #include <omp.h>
@@ -77,18 +79,8 @@ TEST_CASE("TLEDForceField forces are the gradient of its energy, vanish at rest 
 }
 
 namespace {
-// a material that is not a Material<Law> (a user's law): TLED runs its generic loop for it
-struct Wrapped : materials::BaseMaterial {
-    const materials::BaseMaterial* inner = nullptr;
-    unsigned uses() const override { return inner->uses(); }
-    void evaluate(const materials::Invariants* in, materials::Response* out, size_t n, double J0) const override {
-        inner->evaluate(in, out, n, J0);
-    }
-    double shearModulus() const override { return inner->shearModulus(); }
-    double bulkModulus() const override { return inner->bulkModulus(); }
-    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
-    bool stressFreeAtRest() const override { return inner->stressFreeAtRest(); }
-};
+// a material that is not a Material<Law>: the force field runs its generic loop for it
+using Wrapped = materials::conformance::GenericMaterial;
 } // namespace
 
 TEST_CASE("TLEDForceField runs a law outside the built-in list through its generic loop with the same forces",

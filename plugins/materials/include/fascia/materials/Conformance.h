@@ -38,6 +38,19 @@
 
 namespace fascia::materials::conformance {
 
+/// A material that is not a Material<Law> (as a user's law is): it forwards to `inner` through the
+/// virtual interface, so that a force field runs its generic loop for it. Tests compare that loop
+/// with the inlined one of the same law.
+struct GenericMaterial : BaseMaterial {
+    const BaseMaterial* inner = nullptr;
+    unsigned uses() const override { return inner->uses(); }
+    void evaluate(const Invariants* in, Response* out, size_t n, double J0) const override { inner->evaluate(in, out, n, J0); }
+    double shearModulus() const override { return inner->shearModulus(); }
+    double bulkModulus() const override { return inner->bulkModulus(); }
+    const Vec3* fibreDirection(int w) const override { return inner->fibreDirection(w); }
+    bool stressFreeAtRest() const override { return inner->stressFreeAtRest(); }
+};
+
 /// Result of checkLawDerivatives.
 struct LawReport {
     double maxRelError = 0;  ///< max over the derivatives of |analytic - central difference| / scale
