@@ -1,5 +1,7 @@
 /// fascia-run end to end: exit codes (0 good, 1 bad command line, 2 bad scene, 3 failed run), the
 /// summary line, and the options.
+#include "FasciaRunWorkspace.h"
+
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -25,61 +27,8 @@ namespace {
 
 const std::string kGoodPlugin = std::string(TEST_PLUGIN_DIR) + "/good/libfascia_testplugin.so";
 
-/// A temporary folder holding the scenes and the captured output of one test.
-class Workspace {
-public:
-    Workspace() {
-        std::string tmpl = (fs::temp_directory_path() / "fascia-run-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        m_dir = fs::canonical(tmpl);
-    }
-    ~Workspace() {
-        std::error_code ec;
-        fs::remove_all(m_dir, ec);
-    }
-    const fs::path& dir() const { return m_dir; }
-    std::string write(const std::string& name, const std::string& text) const {
-        const fs::path p = m_dir / name;
-        fs::create_directories(p.parent_path());
-        std::ofstream(p) << text;
-        return p.string();
-    }
-
-    struct Result {
-        int code = -1;
-        std::string out, err;
-        /// The summary line ("fascia-run: N steps, ..."), empty when there is none.
-        std::string summary() const {
-            std::istringstream in(out);
-            for (std::string line; std::getline(in, line);)
-                if (line.rfind("fascia-run: ", 0) == 0) return line;
-            return {};
-        }
-        std::string firstErrLine() const { return err.substr(0, err.find('\n')); }
-    };
-
-    /// Runs fascia-run with args (shell words) and optional environment assignments.
-    Result run(const std::string& args, const std::string& env = "") const {
-        const std::string out = (m_dir / "stdout.txt").string(), err = (m_dir / "stderr.txt").string();
-        const std::string cmd = "cd '" + m_dir.string() + "' && " + env + " '" FASCIA_RUN "' " + args + " >'" + out +
-                                "' 2>'" + err + "' </dev/null";
-        const int status = std::system(cmd.c_str());
-        Result r;
-        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
-
-private:
-    static std::string slurp(const std::string& f) {
-        std::ifstream in(f);
-        std::ostringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    }
-    fs::path m_dir;
-};
+using fasciaruntest::slurpFile;
+using fasciaruntest::Workspace;
 
 /// A one-body scene of the test plugin's components.
 std::string scene(const std::string& rootAttrs, const std::string& nanAttrs = "", const std::string& extra = "") {
@@ -391,13 +340,6 @@ std::string probeScene(const std::string& probeAttrs) {
   </Node>
 </Node>
 )";
-}
-
-std::string slurpFile(const fs::path& p) {
-    std::ifstream in(p);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
 }
 
 /// fascia-run started in dir with args, its output into dir/stdout.txt and dir/stderr.txt.

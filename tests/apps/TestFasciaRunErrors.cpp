@@ -2,6 +2,8 @@
 /// scene, 1 for an output that cannot be written), and no file written when the run fails before it
 /// starts. Every child run is bounded by `timeout`, so a regression that blocks (on a FIFO) fails
 /// its test instead of hanging the suite.
+#include "FasciaRunWorkspace.h"
+
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
@@ -23,59 +25,7 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-/// A temporary folder with the scenes and the output folder of one test.
-class Workspace {
-public:
-    Workspace() {
-        std::string tmpl = (fs::temp_directory_path() / "fascia-run-errors-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        m_dir = fs::canonical(tmpl);
-    }
-    ~Workspace() {
-        std::error_code ec;
-        fs::remove_all(m_dir, ec);
-    }
-    const fs::path& dir() const { return m_dir; }
-    std::string write(const std::string& name, const std::string& text) const {
-        const fs::path p = m_dir / name;
-        fs::create_directories(p.parent_path());
-        std::ofstream(p) << text;
-        return p.string();
-    }
-    struct Result {
-        int code = -1;
-        std::string out, err;
-    };
-    /// Runs fascia-run in dir() with args (shell words), killed after 60 s (exit code 124).
-    Result run(const std::string& args) const {
-        const std::string out = (m_dir / ".stdout").string(), err = (m_dir / ".stderr").string();
-        const std::string cmd = "cd '" + m_dir.string() + "' && timeout -s KILL 60 '" FASCIA_RUN "' " + args + " >'" +
-                                out + "' 2>'" + err + "' </dev/null";
-        const int status = std::system(cmd.c_str());
-        Result r;
-        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
-    /// The files under folder (relative to dir()), sorted.
-    std::vector<std::string> filesIn(const std::string& folder) const {
-        std::vector<std::string> out;
-        std::error_code ec;
-        for (auto& e : fs::recursive_directory_iterator(m_dir / folder, ec)) out.push_back(e.path().filename().string());
-        std::sort(out.begin(), out.end());
-        return out;
-    }
-
-private:
-    static std::string slurp(const std::string& f) {
-        std::ifstream in(f);
-        std::ostringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    }
-    fs::path m_dir;
-};
+using fasciaruntest::Workspace;
 
 /// The exporter of these scenes: a VTKExporter, or in a build without VTK a second Monitor (both
 /// write at the first observation and check their output path the same way).
