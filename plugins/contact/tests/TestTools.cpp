@@ -102,6 +102,19 @@ TEST_CASE("Keyframes interpolate positions linearly and orientations by slerp", 
     CHECK(probe.pose().position == Vec3(0, 0.2, 1));  // after the last key: the last
 }
 
+TEST_CASE("A load curve moves a tool along its displacement", "[SphereTool][RigidTool]") {
+    auto sim = Simulation::fromString(
+        blockScene("<SemiImplicitEuler/>", "", "  <SphereTool name=\"ball\" body=\"@block/state\" radius=\"0.01\" position=\"0 0 1\" "
+                                                "displacement=\"0 0.2 -0.4\" positionCurve=\"ramp 0.004\"/>\n",
+                   "dt=\"0.001\""),
+        "scene.xml");
+    RigidTool& ball = toolOf(*sim, "ball");
+    sim->run(1);
+    CHECK(ball.pose().position.isApprox(Vec3(0, 0.05, 0.9), 1e-12));
+    sim->run(5);  // the ramp held at 1 after t = 0.004 s
+    CHECK(ball.pose().position.isApprox(Vec3(0, 0.2, 0.6), 1e-12));
+}
+
 TEST_CASE("setPose moves a tool at the next step and replaces its keyframes", "[PlaneTool][RigidTool]") {
     auto sim = Simulation::fromString(
         blockScene("<SemiImplicitEuler/>", "", "  <PlaneTool name=\"plate\" body=\"@block/state\" normal=\"0 0 -1\" keyTimes=\"0 1\" "
