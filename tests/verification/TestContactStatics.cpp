@@ -10,7 +10,7 @@ using fascia::Vec3;
 namespace {
 
 // (with a contact the relaxation stalls near a relative residual of 1e-9, where the prescribed
-// displacement of TestStaticSolutions.cpp reaches 1e-11: the positions are still right to 1e-8)
+// displacement of TestStaticSolutions.cpp reaches 1e-11; the positions are checked to 1e-6)
 const char* kSolver = R"(<DynamicRelaxation name="dr" tolerance="1e-9" displacementTolerance="1e-9"/>)";
 
 /// The unit cube of StaticSupport.h on rollers at xmin, ymin and zmin, its top pressed by a
