@@ -15,8 +15,11 @@ std::string num(double v) {
     os << v;
     return os.str();
 }
-/// Contact tolerance: a node within this fraction of the body's size from the tool touches it.
-constexpr double kTouch = 1e-9;
+/// Contact tolerance: a node within this fraction of the body's size from the tool touches it. Above
+/// the static solver's probing perturbation (DynamicRelaxation moves nodes by up to 1e-7 of the
+/// body's size to estimate the stiffness), so that probing does not switch a pressed node's contact
+/// off and read its whole contact force as stiffness; far below any deformation of interest.
+constexpr double kTouch = 2e-7;
 } // namespace
 
 RigidTool::RigidTool() = default;
