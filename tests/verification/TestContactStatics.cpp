@@ -74,3 +74,4 @@ TEST_CASE("A plate moved by keyframes gives the closed form at each load step", 
         CHECK(plate(*sim).force()[2] == Approx(-ref.Pzz).epsilon(1e-6));
     }
 }
+
