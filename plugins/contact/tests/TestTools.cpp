@@ -170,3 +170,27 @@ TEST_CASE("Tool force and torque columns of the Monitor are the tool's force and
     }
     fs::remove_all(dir);
 }
+
+TEST_CASE("Every shape takes its pose from position and orientation, a load curve or keyframes", "[PlaneTool][SphereTool][CapsuleTool][ToolMotion]") {
+    const std::string shape = GENERATE(std::string("PlaneTool normal=\"0 0 -1\""), std::string("SphereTool radius=\"0.01\""),
+                                       std::string("CapsuleTool radius=\"0.01\" length=\"0.05\""));
+    CAPTURE(shape);
+    const double h = std::sqrt(0.5);  // a quarter turn about z: w = z = sqrt(1/2)
+    auto run = [&](const std::string& pose, int steps) {
+        auto sim = Simulation::fromString(
+            blockScene("<SemiImplicitEuler/>", "", "  <" + shape + " name=\"tool\" body=\"@block/state\" staticFriction=\"0.3\" kineticFriction=\"0.2\" " + pose + "/>\n",
+                       "dt=\"0.001\""),
+            "scene.xml");
+        sim->run(steps);
+        return sim->tool("tool").pose();
+    };
+    const auto fixed = run("position=\"0 0 2\" orientation=\"2 0 0 2\"", 1);
+    CHECK(fixed.position == Vec3(0, 0, 2));
+    CHECK(std::abs(fixed.orientation.w() - h) < 1e-15);
+    CHECK(std::abs(fixed.orientation.z() - h) < 1e-15);
+    const auto curve = run("position=\"0 0 2\" displacement=\"0 0 1\" positionCurve=\"ramp 0.004\"", 2);
+    CHECK(curve.position.isApprox(Vec3(0, 0, 2.5), 1e-12));
+    const auto keyed = run("keyTimes=\"0 0.002\" keyPositions=\"0 0 2  0 0 3\" keyOrientations=\"1 0 0 0  0 0 0 1\"", 1);
+    CHECK(keyed.position.isApprox(Vec3(0, 0, 2.5), 1e-12));
+    CHECK(std::abs(keyed.orientation.w() - h) < 1e-12);
+}
