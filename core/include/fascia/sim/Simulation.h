@@ -23,6 +23,8 @@
 
 namespace fascia::core {
 
+class BaseTool;
+
 /// A triangle surface to draw or export, valid until the scene changes: points (m) and triangles
 /// indexing them, turned outwards. Read it between steps.
 struct SurfaceView {
@@ -97,6 +99,9 @@ public:
     /// BaseTopology::boundaryTriangles); for a visual surface (BaseVisualSurface, e.g.
     /// BarycentricSurfaceMapping), its moved vertices and triangles. Throws when there is none.
     SurfaceView surface(const std::string& nameOrPath);
+    /// A rigid tool (fascia/sim/Tool.h) by name or path ("probe", "/root/probe"); throws an input
+    /// error when there is none or the component of that name is no tool.
+    BaseTool& tool(const std::string& nameOrPath);
     /// Any component by name or path; null when there is none.
     Component* find(const std::string& nameOrPath) const;
     const std::vector<MechanicalGroup>& groups() const { return m_groups; }
