@@ -164,11 +164,10 @@ void buildNodeRows(HEMLData& d) {
     d.blockEnergy.assign(d.blocks.size(), 0.0);
 }
 
-/// The viscoelastic state of eq. (18)-(20), one value per slot, term and relaxed component.
+/// The viscoelastic state of eq. (18)-(20), one value per slot, term and link coefficient.
 void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_t S) {
     // viscoelastic state
     d.nTerms = 0;
-    d.nComp = 0;
     d.Yprev.clear();
     d.Ycur.clear();
     d.yComputed = false;
@@ -177,11 +176,10 @@ void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_
         d.nTerms = int(visco->termCount());
         d.relaxIso = visco->relaxesIsochoric();
         d.relaxVol = visco->relaxesVolumetric();
-        d.nComp = d.relaxIso ? 7 : 1;
         // one part relaxes: move each material's rest-stress term s ln J out of the isochoric part
         if (d.relaxIso != d.relaxVol)
             for (size_t m = 0; m < d.materials.size(); ++m) d.restShift[m] = materials::relaxationSplit(*d.materials[m], d.J0).shift;
-        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
+        d.Yprev.assign(size_t(d.nTerms * 6), DVec(S, 0.0));
         d.Ycur = d.Yprev;
     }
 }

@@ -24,11 +24,12 @@
 ///
 /// Viscoelasticity (section 3.5): a ViscoelasticProny component in the same node makes the
 /// per-tetrahedron forces visco-hyperelastic by the recurrence of eq. (18)-(20),
-///   gamma_i^n = A_i f^n + B_i gamma_i^(n-1),   f_visco = f - sum_i gamma_i,
-/// applied to each tetrahedron's generalised forces (the six link coefficients g_k and the volume
-/// coefficient Vol dW/dJ, split into its isochoric and volumetric parts per `apply`) rather than
-/// to its Cartesian nodal forces: the same recurrence, but objective (a rigid rotation of a
-/// stressed body does not relax). The history advances once per step (committed at beginStep).
+///   gamma_i^n = A_i R^n + B_i gamma_i^(n-1),   g_k - sum_i gamma_i,
+/// applied not to the Cartesian nodal forces but to the second Piola-Kirchhoff stress of the relaxed
+/// part (`apply`) written as six link coefficients R_k = Vol/2 S : C_k (the I terms' g_k and the
+/// relaxed J coefficient through dJ/dl_k): TLED's model (TLED eq. (24), (30)) in HEML's variables, and
+/// objective (a rigid rotation of a stressed body does not relax). See HEMLKernel.h (relax) and
+/// docs/materials.md, section 3. The history advances once per step (committed at beginStep).
 ///
 /// Performance (docs/performance.md, lessons 1 to 5): elements as structure of arrays (80 bytes each) in
 /// blocks of about 1024 (the block count depends on the mesh only, never on the thread count);
