@@ -6,6 +6,7 @@
 #include "fascia/elements/BlockBuffers.h"
 #include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,9 +82,9 @@ struct HEMLData {
     /// per material: the s of s ln J moved from the isochoric to the volumetric part before one of
     /// them relaxes, so that each is stress-free at rest (materials/RelaxationSplit.h); 0 when both relax
     std::vector<double> restShift;
-    std::vector<double> A, B;
-    std::vector<DVec> Yprev, Ycur;
-    bool yComputed = false;
+    std::vector<double> A, B;         ///< A_i, B_i of the last evaluation (TLED eq. (30), HEML eq. (20))
+    std::vector<DVec> Yprev, Ycur;    ///< the committed history and the last evaluation's
+    viscoelastic::HistoryClock clock;  ///< when the history advances and over what time
 };
 
 /// Scratch of one chunk (on the stack of the thread running a block).

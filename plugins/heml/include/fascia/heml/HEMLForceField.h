@@ -29,7 +29,8 @@
 /// part (`apply`) written as six link coefficients R_k = Vol/2 S : C_k (the I terms' g_k and the
 /// relaxed J coefficient through dJ/dl_k): TLED's model (TLED eq. (24), (30)) in HEML's variables, and
 /// objective (a rigid rotation of a stressed body does not relax). See HEMLKernel.h (relax) and
-/// docs/materials.md, section 3. The history advances once per step (committed at beginStep).
+/// docs/materials.md, section 3. The history advances when forces are asked for at a new time,
+/// over the time elapsed since the last evaluation (fascia/viscoelastic/HistoryClock.h).
 ///
 /// Performance (docs/performance.md, lessons 1 to 5): elements as structure of arrays (80 bytes each) in
 /// blocks of about 1024 (the block count depends on the mesh only, never on the thread count);
@@ -63,7 +64,6 @@ public:
     ~HEMLForceField() override;
 
     void init() override;
-    void beginStep(double t, double dt) override;
     std::vector<core::Component*> dependencies() const override;
 
     void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
@@ -82,7 +82,8 @@ public:
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
 
     /// f += forces at positions x; x and f hold 3 doubles per node in the state's order (a
-    /// Positions array's data()). For benchmarks and embedding programs; addForce calls it.
+    /// Positions array's data()), with the viscous history of the last addForce, not advanced.
+    /// For benchmarks and embedding programs.
     void addForceRaw(const double* x, double* f);
     /// Number of element blocks (fixed at init from the element count; not the thread count).
     size_t blockCount() const;
@@ -110,6 +111,7 @@ public:
 
 private:
     void precompute(const Positions& rest);
+    void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
     Tetrahedra m_tets;                                         // input order
@@ -120,7 +122,6 @@ private:
     std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
     std::unique_ptr<HEMLData> m_data;
-    bool m_stepOpen = false;
 };
 
 } // namespace fascia::heml
