@@ -129,8 +129,9 @@ void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks) {
                                           ": unknown attribute '" + key + "'",
                             notes);
         }
-        // a node's parameters take values, except a link to a component (gravityCurve="@ramp")
-        if (!allowLinks && !value.empty() && value[0] == '@' && !p->isComponentLink())
+        // a node's parameters take values or links, as a component's (gravity="@g.direction",
+        // gravityCurve="@ramp"), except its name
+        if (!allowLinks && !value.empty() && value[0] == '@' && key == "name")
             throwInputError(spec.loc, obj.className() + ": attribute '" + key + "' cannot be a link");
         p->read(value, spec.loc);
     }

@@ -280,7 +280,19 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
     m_timeAtDtChange = m_time;
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
-    const auto [crit, limiting] = limitingForceField();
+    // the force fields' critical step, over the groups whose integrator steps in time: a solver whose
+    // stable step is infinite (DynamicRelaxation: dt is a load step, its iterations have their own
+    // fictitious masses) is not warned
+    double crit = std::numeric_limits<double>::infinity();
+    const BaseForceField* limiting = nullptr;
+    for (auto& g : m_groups) {
+        double c = std::numeric_limits<double>::infinity();
+        const BaseForceField* l = nullptr;
+        for (auto* ff : g.forceFields)
+            if (const double s = ff->stableTimeStep(*g.state); s < c) c = s, l = ff;
+        std::string why;
+        if (l && c < crit && g.integrator->stableTimeStep(c, why) < std::numeric_limits<double>::infinity()) crit = c, limiting = l;
+    }
     if (warnAboveCritical && dt > crit)
         m_root->warn("dt = " + std::to_string(dt) + " s is above the critical time step " + std::to_string(crit) +
                      " s of " + limiting->className() + " '" + limiting->path() +

@@ -164,24 +164,22 @@ void buildNodeRows(HEMLData& d) {
     d.blockEnergy.assign(d.blocks.size(), 0.0);
 }
 
-/// The viscoelastic state of eq. (18)-(20), one value per slot, term and relaxed component.
+/// The viscoelastic state of eq. (18)-(20), one value per slot, term and link coefficient.
 void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_t S) {
     // viscoelastic state
     d.nTerms = 0;
-    d.nComp = 0;
     d.Yprev.clear();
     d.Ycur.clear();
-    d.yComputed = false;
+    d.clock = viscoelastic::HistoryClock{};
     d.restShift.assign(d.materials.size(), 0.0);
     if (visco) {
         d.nTerms = int(visco->termCount());
         d.relaxIso = visco->relaxesIsochoric();
         d.relaxVol = visco->relaxesVolumetric();
-        d.nComp = d.relaxIso ? 7 : 1;
         // one part relaxes: move each material's rest-stress term s ln J out of the isochoric part
         if (d.relaxIso != d.relaxVol)
             for (size_t m = 0; m < d.materials.size(); ++m) d.restShift[m] = materials::relaxationSplit(*d.materials[m], d.J0).shift;
-        d.Yprev.assign(size_t(d.nTerms * d.nComp), DVec(S, 0.0));
+        d.Yprev.assign(size_t(d.nTerms * 6), DVec(S, 0.0));
         d.Ycur = d.Yprev;
     }
 }
@@ -339,31 +337,37 @@ void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
 // ---------------------------------------------------------------------------------------------
 // forces
 
-void HEMLForceField::beginStep(double, double) {
-    if (!m_data) return;
-    HEMLData& d = *m_data;
-    if (d.nTerms > 0 && d.yComputed) {
-        std::swap(d.Yprev, d.Ycur);  // commit gamma^n (eq. (20)) for the next step
-        d.yComputed = false;
-    }
-    m_stepOpen = true;
-}
-
-void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double) {
+void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
     checkState(state);
     if (f.size() != state.size()) elements::runtimeError(*this, "force array of the wrong size");
-    addForceRaw(state.x().data()->data(), f.data()->data());
+    HEMLData& d = *m_data;
+    if (d.nTerms > 0) {
+        // a new time advances the history, over the time elapsed since the last evaluation
+        // (viscoelastic/HistoryClock.h)
+        if (!m_visco->hasCoefficients())
+            elements::runtimeError(*this, "ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
+        if (d.clock.beginEvaluation(t, m_visco->dt())) std::swap(d.Yprev, d.Ycur);
+        viscoelastic::stepCoefficients(*m_visco, d.clock.elapsed(), m_visco->dt(), d.A, d.B);
+    }
+    evaluate(state.x().data()->data(), f.data()->data());
 }
 
 void HEMLForceField::addForceRaw(const double* x, double* fout) {
     HEMLData& d = *m_data;
-    const bool visco = d.nTerms > 0;
-    if (visco) {
+    if (d.nTerms > 0) {
         if (!m_visco->hasCoefficients())
             elements::runtimeError(*this, "ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
-        d.A = m_visco->A();
-        d.B = m_visco->B();
+        if (d.A.empty()) {
+            d.A = m_visco->A();
+            d.B = m_visco->B();
+        }
     }
+    evaluate(x, fout);
+}
+
+void HEMLForceField::evaluate(const double* x, double* fout) {
+    HEMLData& d = *m_data;
+    const bool visco = d.nTerms > 0;
     const size_t nb = d.blocks.size();
     const bool parallel = nb > 1;
 #pragma omp parallel if (parallel)
@@ -376,7 +380,6 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
         // per node, sum its rows in block order (deterministic for any thread count)
         d.rows.sumInto(fout);
     }
-    if (visco && m_stepOpen) d.yComputed = true;
 }
 
 double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
@@ -434,9 +437,56 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
         elements::densityFor(*mass, V));
 }
 
+namespace {
+
+/// The viscous part of the second Piola-Kirchhoff stress of one element at deformation gradient F
+/// (what the Prony histories subtract from the elastic S, for a stress output): the element loop's
+/// relaxation (HEMLKernel.h, relax) written for one element with Eigen. R_k = Vol/2 tr(D_k V^-1 S_r V^-T),
+/// S_r the relaxed part's S; gamma_i = A_i R + B_i Y_i (eq. (20)); back to a tensor by the inverse of
+/// the map tr(D_k M) (HEMLKernel.h, traceDk) and S = V M V^T.
+Mat3 viscousStress(const HEMLData& d, size_t slot, const Mat3& V, const Mat3& F, const materials::Invariants& in,
+                   const materials::Response& r, double shift, const Vec3& a0, const Vec3& b0, const std::vector<DVec>& Y,
+                   const double* A, const double* B) {
+    const Mat3 I = Mat3::Identity(), C = F.transpose() * F, JCi = in.J * C.inverse();
+    const double q = shift / std::max(d.J0, in.J);  // the rest split (materials/RelaxationSplit.h)
+    Mat3 Sr = Mat3::Zero();
+    if (d.relaxIso)
+        Sr += 2.0 * (r.dI1 * I + r.dI2 * (in.I1 * I - C) + r.dI4 * a0 * a0.transpose() + r.dI6 * b0 * b0.transpose()) +
+              (r.dJiso - q) * JCi;
+    if (d.relaxVol) Sr += (r.dJvol + q) * JCi;
+    const Mat3 Vi = V.inverse(), M = Vi * Sr * Vi.transpose();
+    const double vol = d.vol[slot];
+    double R[6];
+    traceDk(M(0, 0), M(1, 1), M(2, 2), M(0, 1), M(1, 2), M(0, 2), R);
+    double g[6] = {0, 0, 0, 0, 0, 0};
+    for (int t = 0; t < d.nTerms; ++t)
+        for (int k = 0; k < 6; ++k) g[k] += A[t] * 0.5 * vol * R[k] + B[t] * Y[size_t(t * 6 + k)][slot];
+    // tr(D_k G) = g_k: G12 = -g_4 ..., G11 = g_1 - G12 - G13 ... (traceDk inverted), G = 2/Vol of it
+    const double G12 = -g[3], G23 = -g[4], G13 = -g[5];
+    Mat3 G;
+    G << g[0] - G12 - G13, G12, G13, G12, g[1] - G12 - G23, G23, G13, G23, g[2] - G13 - G23;
+    return V * (2.0 / vol * G) * V.transpose();
+}
+
+} // namespace
+
 void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
     checkState(state);
+    const HEMLData& d = *m_data;
     const size_t ne = m_tets.size();
+    // the viscous history of the state at the scene's time (viscoelastic/HistoryClock.h): its
+    // coefficients, and each material's rest shift
+    const std::vector<DVec>* Y = nullptr;
+    std::vector<double> A, B;
+    std::map<const BaseMaterial*, double> shift;
+    if (d.nTerms > 0 && m_visco->hasCoefficients()) {
+        const viscoelastic::HistoryClock::Output o = d.clock.outputAt(node() ? node()->context().time : 0.0, m_visco->dt());
+        Y = o.current ? &d.Ycur : &d.Yprev;
+        if (!o.lastCoefficients) viscoelastic::stepCoefficients(*m_visco, o.elapsed, m_visco->dt(), A, B);
+        else if (!d.A.empty()) A = d.A, B = d.B;
+        else A = m_visco->A(), B = m_visco->B();
+        for (size_t m = 0; m < d.materials.size(); ++m) shift[d.materials[m]] = d.restShift[m];
+    }
     core::CellField J{"J", 1, "", std::vector<double>(ne)};
     core::CellField vm{"vonMises", 1, "Pa", std::vector<double>(ne)};
     const auto& x = state.x();
@@ -470,9 +520,13 @@ void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vecto
         materials::Response r;
         m->evaluate(&in, &r, 1, J0);
         // Kirchhoff stress tau = F S F^T = 2 [dI1 B + dI2 (I1 B - B^2) + dI4 Fa Fa^T + dI6 Fb Fb^T] + J dW/dJ I
-        const Mat3 tau = 2.0 * (r.dI1 * Bm + r.dI2 * (in.I1 * Bm - Bm * Bm) + r.dI4 * fa * fa.transpose() +
-                                r.dI6 * fb * fb.transpose()) +
-                         Je * (r.dJiso + r.dJvol) * Mat3::Identity();
+        Mat3 tau = 2.0 * (r.dI1 * Bm + r.dI2 * (in.I1 * Bm - Bm * Bm) + r.dI4 * fa * fa.transpose() +
+                          r.dI6 * fb * fb.transpose()) +
+                   Je * (r.dJiso + r.dJvol) * Mat3::Identity();
+        if (Y) {
+            const Vec3 a0 = m_dirA.empty() ? Vec3::Zero() : m_dirA[e], b0 = m_dirB.empty() ? Vec3::Zero() : m_dirB[e];
+            tau -= F * viscousStress(d, size_t(d.slotOf[e]), V, F, in, r, shift[m], a0, b0, *Y, A.data(), B.data()) * F.transpose();
+        }
         const Mat3 sig = tau / std::max(Je, J0);
         vm.values[e] = elements::vonMises(elements::Sym33<double>{sig(0, 0), sig(1, 1), sig(2, 2), sig(0, 1), sig(1, 2), sig(0, 2)});
     }

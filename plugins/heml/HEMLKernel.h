@@ -6,6 +6,7 @@
 #include "fascia/elements/BlockBuffers.h"
 #include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,15 +76,15 @@ struct HEMLData {
     elements::CompactBlockBuffers rows;
     std::vector<double> blockEnergy;
 
-    // viscoelasticity (eq. (18)-(20)): per term and relaxed component, one value per slot
-    int nTerms = 0, nComp = 0;
+    // viscoelasticity (eq. (18)-(20)): per term and link coefficient (6), one value per slot
+    int nTerms = 0;
     bool relaxIso = false, relaxVol = false;
     /// per material: the s of s ln J moved from the isochoric to the volumetric part before one of
     /// them relaxes, so that each is stress-free at rest (materials/RelaxationSplit.h); 0 when both relax
     std::vector<double> restShift;
-    std::vector<double> A, B;
-    std::vector<DVec> Yprev, Ycur;
-    bool yComputed = false;
+    std::vector<double> A, B;         ///< A_i, B_i of the last evaluation (TLED eq. (30), HEML eq. (20))
+    std::vector<DVec> Yprev, Ycur;    ///< the committed history and the last evaluation's
+    viscoelastic::HistoryClock clock;  ///< when the history advances and over what time
 };
 
 /// Scratch of one chunk (on the stack of the thread running a block).
@@ -270,6 +271,20 @@ FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI
 
 /// Viscoelastic relaxation of the chunk's generalised forces (see HEMLForceField.h); shift: the
 /// block material's HEMLData::restShift.
+///
+/// What relaxes is the relaxed part's second Piola-Kirchhoff stress as a whole, written as six link
+/// coefficients R_k = Vol/2 S : C_k (the map of S onto them is linear and fixed by the rest shape,
+/// so the recurrence on R_k is TLED eq. (30) on S, term by term). The link coefficients g_k carry
+/// only the I1, I2, I4, I6 terms of S; the J terms act through Vol dW/dJ dJ/dx (eq. (C.4)). Each of
+/// the two is not zero at rest where the law is written with the plain invariants or the modified
+/// ones (NeoHookean: 2 dI1 = mu and dJiso = -mu at rest, which cancel only in their sum), so the
+/// J part relaxed with it is turned into link coefficients too,
+///   Q dJ/dl_k = Q J/2 tr(D^-1 D_k) = tr(D_k Q invDetV^2 cof(D) / (2 J))   (Jacobi's formula;
+///   D = V^T C V = v^T v, the Gram matrix of the current edges, det D = (J det V)^2).
+/// Relaxing g_k and Vol dW/dJ each by itself instead would multiply each one's history by a
+/// different current geometry (the edges for g_k, cof F for the J part): under a changing
+/// deformation their rest values no longer cancel (a creep test crept 4.6 % more at t = tau,
+/// tests/verification/TestQuasiStaticCreep.cpp).
 FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
     // the parts that relax, each stress-free at rest: Vol s / J moved from Qi to Qv (their sum, the
     // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
@@ -281,22 +296,33 @@ FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
             c.Qv[j] += q;
         }
     }
-    // eq. (20): gamma_i^n = A_i f^n + B_i gamma_i^(n-1); eq. (18): f - sum_i gamma_i, on the
-    // generalised forces: g_k and the isochoric J part (apply = isochoric), the volumetric J
-    // part (volumetric), or g_k and the whole J part (both)
-    double rel[7][kLanes];
-    const int nc = d.nComp;
-    for (int q = 0; q < nc; ++q)
-        for (int j = 0; j < kLanes; ++j) {
-            const double src = !d.relaxIso ? c.Qv[j] : q < 6 ? c.gk[q][j] : d.relaxVol ? c.Qi[j] + c.Qv[j] : c.Qi[j];
-            rel[q][j] = src;
-        }
-    double sum[7][kLanes] = {};
+    // the relaxed part as link coefficients R_k: g_k when the isochoric part relaxes, plus the
+    // relaxed J coefficient (Qi, Qv or both, per `apply`) through dJ/dl_k
+    const double* invDetV = d.invDetV.data() + e0;
+    const double wIso = d.relaxIso ? 1.0 : 0.0, wVol = d.relaxVol ? 1.0 : 0.0;  // (no branch in the loop)
+    double rel[6][kLanes];
+#pragma GCC ivdep
+    for (int j = 0; j < kLanes; ++j) {
+        const double l0 = c.l[0][j], l1 = c.l[1][j], l2 = c.l[2][j];
+        const double D11 = l0, D22 = l1, D33 = l2;
+        const double D12 = 0.5 * (l0 + l1 - c.l[3][j]), D23 = 0.5 * (l1 + l2 - c.l[4][j]), D13 = 0.5 * (l0 + l2 - c.l[5][j]);
+        const double J = c.J[j];
+        const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
+        const double Q = wIso * c.Qi[j] + wVol * c.Qv[j];
+        const double s = 0.5 * Q * invDetV[j] * invDetV[j] * iJ;
+        double out[6];
+        traceDk(s * (D22 * D33 - D23 * D23), s * (D11 * D33 - D13 * D13), s * (D11 * D22 - D12 * D12),
+                s * (D13 * D23 - D12 * D33), s * (D12 * D13 - D11 * D23), s * (D12 * D23 - D13 * D22), out);
+        for (int k = 0; k < 6; ++k) rel[k][j] = wIso * c.gk[k][j] + out[k];
+    }
+    // eq. (20) / TLED eq. (30): gamma_i^n = A_i R^n + B_i gamma_i^(n-1); eq. (18): g_k - sum_i gamma_i
+    // (the J coefficients keep their elastic values: the relaxed J part's history is in gamma)
+    double sum[6][kLanes] = {};
     for (int t = 0; t < d.nTerms; ++t) {
         const double A = d.A[t], Bt = d.B[t];
-        for (int q = 0; q < nc; ++q) {
-            const double* yp = d.Yprev[size_t(t * nc + q)].data() + e0;
-            double* yc = d.Ycur[size_t(t * nc + q)].data() + e0;
+        for (int q = 0; q < 6; ++q) {
+            const double* yp = d.Yprev[size_t(t * 6 + q)].data() + e0;
+            double* yc = d.Ycur[size_t(t * 6 + q)].data() + e0;
 #pragma GCC ivdep
             for (int j = 0; j < kLanes; ++j) {
                 const double y = A * rel[q][j] + Bt * yp[j];
@@ -305,13 +331,8 @@ FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
             }
         }
     }
-    if (d.relaxIso) {
-        for (int k = 0; k < 6; ++k)
-            for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
-        for (int j = 0; j < kLanes; ++j) c.Qi[j] -= sum[6][j];  // (Qi + Qv) relaxed as a whole when both
-    } else {
-        for (int j = 0; j < kLanes; ++j) c.Qv[j] -= sum[0][j];
-    }
+    for (int k = 0; k < 6; ++k)
+        for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
 }
 
 /// Nodal forces of the chunk at e0 from its generalised forces.

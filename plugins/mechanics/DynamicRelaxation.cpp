@@ -314,6 +314,8 @@ std::string DynamicRelaxation::runSummary() const {
     return os.str();
 }
 
+double DynamicRelaxation::stableTimeStep(double, std::string&) const { return std::numeric_limits<double>::infinity(); }
+
 bool DynamicRelaxation::runFailed() const {
     for (auto& r : m_reports)
         if (!r.converged) return true;

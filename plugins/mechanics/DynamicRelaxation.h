@@ -59,6 +59,10 @@ public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
     std::string runSummary() const override;
     bool runFailed() const override;
+    /// Infinity: dt is a load step, not an integration step (the iterations take their own fictitious
+    /// masses and step, so any dt is stable), and the scene's dt is not warned as above the force
+    /// fields' critical step.
+    double stableTimeStep(double critical, std::string& why) const override;
 
     /// One report per load step and state, in order.
     const std::vector<LoadStepReport>& reports() const { return m_reports; }

@@ -5,6 +5,7 @@
 
 #include "fascia/base/Simd.h"
 #include "fascia/elements/BlockBuffers.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <utility>
 #include <vector>
@@ -67,6 +68,8 @@ struct ViscoSet {
     viscoelastic::ViscoelasticProny* prony = nullptr;
     bool iso = false, vol = false;
     int terms = 0;
+    /// A_i, B_i of the last force evaluation (TLED eq. (30), for the time it advanced the history
+    /// over; before the first, those of the scene's time step)
     std::vector<double> A, B;
     /// the states Y_i of the last step and of the current evaluation, batch by batch (one contiguous
     /// stream per array): batch m of the elements (Block::batchBase + local batch) holds, for each
@@ -84,6 +87,9 @@ struct KernelIO {
     double* F = nullptr;       ///< 9 per cell (cell order)
     const double* Yhist[2] = {nullptr, nullptr};
     double* Ynew[2] = {nullptr, nullptr};
+    /// stress output: the coefficients A_i, B_i of each series (null: the series' own, ViscoSet::A, B)
+    const double* A[2] = {nullptr, nullptr};
+    const double* B[2] = {nullptr, nullptr};
     bool streamY = false;      ///< write Ynew with streaming stores (large states)
 };
 
@@ -114,8 +120,9 @@ struct TLEDForceField::Impl {
     size_t nodeCount = 0;     ///< 1 + largest node index
     std::vector<int> nodeOf;  ///< internal node -> state node when renumbered (empty: the state's order)
     size_t nTetCells = 0;     ///< number of tetrahedra (cell offset of the hexahedra)
-    bool haveCur = false;
-    double curTime = 0;
+    /// when the viscous history advances and over what time (shared with HEML)
+    viscoelastic::HistoryClock clock;
+    double dt = 0;            ///< the scene's time step (s), from dtChanged (0: none yet)
     std::vector<double> u;    ///< displacements of the last addForce, 4 per internal node
     size_t batches = 0;       ///< element batches of all blocks (the viscous states hold one slot per batch)
     bool streamStates = false; ///< viscous states too large for the caches: streaming stores

@@ -129,7 +129,12 @@ void TLEDForceField::init() {
 }
 
 void TLEDForceField::dtChanged(double dt) {
-    for (auto& vs : m_impl->visco) vs.prony->coefficients(dt, vs.A, vs.B);  // TLED eq. (30)
+    Impl& im = *m_impl;
+    im.dt = dt;
+    // TLED eq. (30); once forces were evaluated, A and B stay those of the last evaluation (a stress
+    // output reads them) until the next one computes them for the time it advances over
+    if (!im.clock.evaluated())
+        for (auto& vs : im.visco) vs.prony->coefficients(dt, vs.A, vs.B);
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -178,11 +183,26 @@ void runBlocksOn(const Impl& im, const std::vector<Block>& blocks, const core::B
     }
 }
 
-/// The viscous history a stress output at time t reads: the states of the last evaluation when t is
-/// a later time than it, else the committed ones.
-const double* historyAt(const Impl& im, size_t v, double t) {
-    return (im.haveCur && t != im.curTime) ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
-}
+/// What a stress output at time t reads (viscoelastic/HistoryClock.h): the history and the
+/// coefficients of each series, so that the stress is the one of the state at t.
+struct OutputHistory {
+    std::vector<double> A[2], B[2];
+    const double* Y[2] = {nullptr, nullptr};
+    OutputHistory(const Impl& im, double t) {
+        const viscoelastic::HistoryClock::Output o = im.clock.outputAt(t, im.dt);
+        for (size_t v = 0; v < im.visco.size(); ++v) {
+            Y[v] = o.current ? im.visco[v].Ycur.data() : im.visco[v].Yprev.data();
+            if (!o.lastCoefficients) viscoelastic::stepCoefficients(*im.visco[v].prony, o.elapsed, im.dt, A[v], B[v]);
+        }
+    }
+    void setUp(KernelIO& io) const {
+        for (size_t v = 0; v < 2; ++v) {
+            io.Yhist[v] = Y[v];
+            io.A[v] = A[v].empty() ? nullptr : A[v].data();
+            io.B[v] = B[v].empty() ? nullptr : B[v].data();
+        }
+    }
+};
 
 } // namespace
 
@@ -191,15 +211,13 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
     if (state.size() < im.nodeCount || f.size() < im.nodeCount)
         elements::runtimeError(*this, "its elements use " + std::to_string(im.nodeCount) + " nodes but the state '" +
                                           state.name() + "' has " + std::to_string(state.size()));
-    // viscous history: a new time advances it (the last evaluation becomes the previous step)
+    // viscous history: a new time advances it, over the time elapsed since the last evaluation (the
+    // last evaluation becomes the previous step; viscoelastic/HistoryClock.h)
     if (!im.visco.empty()) {
-        for (auto& vs : im.visco)
-            if (vs.A.size() != static_cast<size_t>(vs.terms))
-                elements::runtimeError(*this, "viscoelastic stresses need a time step (dtChanged was not called)");
-        if (im.haveCur && t != im.curTime)
+        if (!(im.dt > 0)) elements::runtimeError(*this, "viscoelastic stresses need a time step (dtChanged was not called)");
+        if (im.clock.beginEvaluation(t, im.dt))
             for (auto& vs : im.visco) std::swap(vs.Yprev, vs.Ycur);
-        im.haveCur = true;
-        im.curTime = t;
+        for (auto& vs : im.visco) viscoelastic::stepCoefficients(*vs.prony, im.clock.elapsed(), im.dt, vs.A, vs.B);
     }
     im.u.resize(4 * im.nodeCount);
     const double* u = im.u.data();
@@ -254,9 +272,10 @@ void TLEDForceField::stresses(const core::BaseMechanicalState& state, double t, 
     const Impl& im = *m_impl;
     S.assign(6 * elementCount(), 0.0);
     if (state.size() < im.nodeCount) return;
+    const OutputHistory h(im, t);
     runBlocksOn(im, im.blocks, state, [&](KernelIO& io, size_t) {
         io.S = S.data();
-        for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = historyAt(im, v, t);
+        h.setUp(io);
     });
 }
 
@@ -264,12 +283,13 @@ void TLEDForceField::cellData(const core::BaseMechanicalState& state, std::vecto
     const Impl& im = *m_impl;
     const size_t n = elementCount();
     if (state.size() < im.nodeCount) return;
-    const double t = node() ? node()->context().time : im.curTime;
+    // the stress of the state at the scene's time (the one an observer writes)
+    const OutputHistory h(im, node() ? node()->context().time : 0.0);
     std::vector<double> S(6 * n, 0.0), F(9 * n, 0.0);
     runBlocksOn(im, im.blocks, state, [&](KernelIO& io, size_t) {
         io.S = S.data();
         io.F = F.data();
-        for (size_t v = 0; v < im.visco.size(); ++v) io.Yhist[v] = historyAt(im, v, t);
+        h.setUp(io);
     });
     core::CellField fS{"S", 6, "Pa", S};
     core::CellField fSig{"cauchyStress", 6, "Pa", std::vector<double>(6 * n)};

@@ -212,7 +212,7 @@ FASCIA_INLINE void viscousStress(Batch<NN>& s, int n, const Fibres& fib, const I
 }
 
 /// Stress output (S and F per cell, scalar): S with the viscous history read but not advanced
-/// unless io.Ynew is given, then P = F S.
+/// unless io.Ynew is given (with the coefficients io.A, io.B where given), then P = F S.
 template <int NN, unsigned U>
 FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Impl& im, const ElementSet<NN>& es,
                                 const KernelIO& io, size_t e0, size_t batch, size_t cellOff) {
@@ -228,9 +228,11 @@ FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Im
             const size_t at = batch * static_cast<size_t>(vs.terms) * 6 * kBatch + static_cast<size_t>(k);
             const double* Yh = io.Yhist[v] + at;  // term t, component i at (6 t + i) kBatch
             double* Yn = io.Ynew[v] ? io.Ynew[v] + at : nullptr;
-            const int terms = vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+            const int terms = io.A[v] || vs.A.size() == static_cast<size_t>(vs.terms) ? vs.terms : 0;
+            const double* Av = io.A[v] ? io.A[v] : vs.A.data();
+            const double* Bv = io.B[v] ? io.B[v] : vs.B.data();
             for (int t = 0; t < terms; ++t) {
-                const double A = vs.A[static_cast<size_t>(t)], Bc = vs.B[static_cast<size_t>(t)];
+                const double A = Av[t], Bc = Bv[t];
                 for (int i = 0; i < 6; ++i) {
                     const size_t row = (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
                     const double Y = A * R[i] + Bc * Yh[row];

@@ -138,6 +138,50 @@ TEST_CASE("a dt above the critical step is a warning naming both and the force f
     CHECK(sim->dt() == 0.05);
 }
 
+TEST_CASE("a static solver's load step is not warned as above the critical step while an explicit integrator's is",
+          "[Simulation][DynamicRelaxation][SemiImplicitEuler]") {
+    // DynamicRelaxation's dt is a load step (its iterations take their own fictitious masses and step):
+    // its stableTimeStep is infinite, so the force fields' critical step does not apply to its group
+    const std::string ff = GENERATE(as<std::string>{}, "HEMLForceField", "TLEDForceField");
+    CAPTURE(ff);
+    SECTION("one group") {
+        std::string xml = cube("0.05", ff);
+        xml.replace(xml.find("<SemiImplicitEuler/>"), 20, "<DynamicRelaxation name=\"dr\"/>");
+        CaptureCerr cap;
+        auto sim = Simulation::fromString(xml, "scene.xml");
+        sim->step();
+        sim->setDt(0.1);  // a later change of dt is not warned either
+        sim->step();
+        CHECK(sim->criticalTimeStep() < 0.01);  // the force field's critical step is far below dt
+        CHECK_THAT(cap.out.str(), !Contains("critical time step") && !Contains("stable time step"));
+        CaptureCerr explicitCap;
+        Simulation::fromString(cube("0.05", ff), "scene.xml");
+        CHECK_THAT(explicitCap.out.str(), Contains("above the critical time step") && Contains(ff + " '/root/ff'"));
+    }
+    SECTION("two groups: the explicit one is warned, with its own force field's critical step") {
+        // the static group is the stiffer one (the smaller critical step), so a warning from the
+        // smallest step over every group would name its force field
+        const std::string group = "    <GridMesh min=\"0 0 0\" max=\"0.1 0.1 0.1\" resolution=\"4 4 4\"/>\n"
+                                  "    <MechanicalObject name=\"state\"/>\n    <LumpedMass density=\"1000\"/>\n";
+        const std::string xml = "<Node name=\"root\" dt=\"0.05\">\n  <Node name=\"static\">\n" + group +
+                                "    <CompressibleNeoHookean youngModulus=\"300000\" poissonRatio=\"0.45\"/>\n"
+                                "    <" + ff + " name=\"ff\"/>\n    <DynamicRelaxation/>\n  </Node>\n"
+                                "  <Node name=\"moving\">\n" + group +
+                                "    <CompressibleNeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n"
+                                "    <" + ff + " name=\"ff\"/>\n    <SemiImplicitEuler/>\n  </Node>\n</Node>\n";
+        CaptureCerr cap;
+        auto sim = Simulation::fromString(xml, "scene.xml");
+        const std::string out = cap.out.str();
+        CHECK_THAT(out, Contains("above the critical time step") && Contains(ff + " '/root/moving/ff'") &&
+                            !Contains("/root/static/ff"));
+        // the critical step of the moving group, not the smaller one of the static group
+        auto* moving = dynamic_cast<fascia::core::BaseForceField*>(sim->find("/root/moving/ff"));
+        REQUIRE(moving);
+        const std::string crit = std::to_string(moving->stableTimeStep(*dynamic_cast<fascia::core::BaseMechanicalState*>(sim->find("/root/moving/state"))));
+        CHECK_THAT(out, Contains("critical time step " + crit + " s"));
+    }
+}
+
 TEST_CASE("an unstable run fails with a simulation error naming the step", "[Simulation]") {
     CaptureCerr cap;
     auto sim = Simulation::fromString(cube("0.05", "HEMLForceField"), "scene.xml");

@@ -105,9 +105,10 @@ struct Scene {
             if (c.get() != ff) c->init();
         ff->init();
     }
-    Positions forces() {
+    /// Forces at time t (s): a new time advances the viscous history (viscoelastic/HistoryClock.h).
+    Positions forces(double t = 0.0) {
         Positions f(state->size(), Vec3::Zero());
-        ff->addForce(*state, f, 0.0);
+        ff->addForce(*state, f, t);
         return f;
     }
 };

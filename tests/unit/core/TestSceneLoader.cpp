@@ -319,10 +319,28 @@ TEST_CASE("A component link finds its target by relative, absolute and bare path
     CHECK(sim->find("down")->findParam("partner")->linkTarget() == sim->find("rel"));
 }
 
-TEST_CASE("Node attributes cannot be links", "[SceneLoader][Node]") {
+TEST_CASE("Node attributes take parameter links as component attributes do, except the name", "[SceneLoader][Node]") {
+    // gravity linked to a component's Vec3 and dtSafety to a double: the node sees the linked values
+    auto sim = scene(R"(<Node name="root" dtSafety="@c.ceiling">
+  <TestCounter name="c" label="a" ceiling="0.25" direction="0.5 0 -1"/>
+  <Node name="n" gravity="@../c.direction"/>
+</Node>)");
+    const fascia::core::Node* n = nullptr;
+    sim->root().visit([&](const fascia::core::Node& x) { if (x.name() == "n") n = &x; });
+    REQUIRE(n);
+    CHECK(n->contextGravity() == Vec3(0.5, 0, -1));
+    CHECK(sim->root().dtSafety.get() == 0.25);
+    // a link of another type, or to nothing, is located as on a component
+    expectSceneError(R"(<Node name="root">
+  <TestCounter name="c" label="a"/>
+  <Node name="n" gravity="@../c.ceiling"/>
+</Node>)", 3, "Node 'n': gravity (vec3) cannot take TestCounter.ceiling (double)");
     expectSceneError(R"(<Node name="root">
   <Node name="n" gravity="@g.value"/>
-</Node>)", 2, "Node: attribute 'gravity' cannot be a link");
+</Node>)", 2, "Node 'n': gravity = \"@g.value\" links to nothing: no component 'g' from node 'n'");
+    expectSceneError(R"(<Node name="root">
+  <Node name="@g.value"/>
+</Node>)", 2, "Node: attribute 'name' cannot be a link");
 }
 
 TEST_CASE("Names are unique among siblings and unnamed components are numbered", "[SceneLoader][Node]") {

@@ -183,7 +183,9 @@ public:
     /// critical step `critical` (the smallest BaseForceField::stableTimeStep, central difference's
     /// limit 2 / omega_max; infinity when no force field limits the step). dt="auto" is the smallest
     /// over the groups times dtSafety, and a larger dt is warned. Default: critical. 0 when no step is
-    /// stable (forward Euler without damping); `why` then says why and what to do.
+    /// stable (forward Euler without damping); `why` then says why and what to do. Infinity for a
+    /// solver that does not integrate in time (a static solver, whose dt is a load step): its group's
+    /// dt is then checked against neither this nor the force fields' critical step.
     virtual double stableTimeStep(double critical, std::string& why) const { return critical; }
 };
 

@@ -24,11 +24,13 @@
 ///
 /// Viscoelasticity (section 3.5): a ViscoelasticProny component in the same node makes the
 /// per-tetrahedron forces visco-hyperelastic by the recurrence of eq. (18)-(20),
-///   gamma_i^n = A_i f^n + B_i gamma_i^(n-1),   f_visco = f - sum_i gamma_i,
-/// applied to each tetrahedron's generalised forces (the six link coefficients g_k and the volume
-/// coefficient Vol dW/dJ, split into its isochoric and volumetric parts per `apply`) rather than
-/// to its Cartesian nodal forces: the same recurrence, but objective (a rigid rotation of a
-/// stressed body does not relax). The history advances once per step (committed at beginStep).
+///   gamma_i^n = A_i R^n + B_i gamma_i^(n-1),   g_k - sum_i gamma_i,
+/// applied not to the Cartesian nodal forces but to the second Piola-Kirchhoff stress of the relaxed
+/// part (`apply`) written as six link coefficients R_k = Vol/2 S : C_k (the I terms' g_k and the
+/// relaxed J coefficient through dJ/dl_k): TLED's model (TLED eq. (24), (30)) in HEML's variables, and
+/// objective (a rigid rotation of a stressed body does not relax). See HEMLKernel.h (relax) and
+/// docs/materials.md, section 3. The history advances when forces are asked for at a new time,
+/// over the time elapsed since the last evaluation (fascia/viscoelastic/HistoryClock.h).
 ///
 /// Performance (docs/performance.md, lessons 1 to 5): elements as structure of arrays (80 bytes each) in
 /// blocks of about 1024 (the block count depends on the mesh only, never on the thread count);
@@ -62,7 +64,6 @@ public:
     ~HEMLForceField() override;
 
     void init() override;
-    void beginStep(double t, double dt) override;
     std::vector<core::Component*> dependencies() const override;
 
     void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
@@ -81,7 +82,8 @@ public:
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
 
     /// f += forces at positions x; x and f hold 3 doubles per node in the state's order (a
-    /// Positions array's data()). For benchmarks and embedding programs; addForce calls it.
+    /// Positions array's data()), with the viscous history of the last addForce, not advanced.
+    /// For benchmarks and embedding programs.
     void addForceRaw(const double* x, double* f);
     /// Number of element blocks (fixed at init from the element count; not the thread count).
     size_t blockCount() const;
@@ -109,6 +111,7 @@ public:
 
 private:
     void precompute(const Positions& rest);
+    void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
     Tetrahedra m_tets;                                         // input order
@@ -119,7 +122,6 @@ private:
     std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
     std::unique_ptr<HEMLData> m_data;
-    bool m_stepOpen = false;
 };
 
 } // namespace fascia::heml

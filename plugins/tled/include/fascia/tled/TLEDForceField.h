@@ -94,7 +94,9 @@ public:
     /// Infinity when no mass with a density is found.
     double stableTimeStep(const core::BaseMechanicalState& state) const override;
     /// "S" (second Piola-Kirchhoff, 6: xx yy zz xy yz xz), "cauchyStress" (6), "vonMises" (1, of the
-    /// Cauchy stress) and "J" (1), per element: tetrahedra first, then hexahedra, in input order.
+    /// Cauchy stress) and "J" (1), per element: tetrahedra first, then hexahedra, in input order. The
+    /// stresses are those of the state at the scene's time, viscous history included (stresses() at
+    /// that time): what an observer writes is the stress of the state it writes.
     void cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const override;
     size_t elementCount() const override { return m_tets.size() + m_hexes.size(); }
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
