@@ -30,11 +30,11 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out << text;
         out.flush();
-        if (!out) throw core::Error(core::ErrorKind::Internal, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
+        if (!out) throw core::Error(core::ErrorKind::Output, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
     }
     std::error_code ec;
     fs::rename(tmp, p, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
+    if (ec) throw core::Error(core::ErrorKind::Output, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
 }
 
 void VTKExporter::init() {
@@ -207,11 +207,10 @@ void VTKExporter::writeStep(double t, long step) {
     else writer->SetCompressorTypeToNone();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
-        throw core::Error(core::ErrorKind::Internal, loc(), className() + " '" + name() + "': cannot write '" + target.string() +
-                                         "' (disk full, or no permission on the output folder?)");
+        failOutput(&m_filename, "cannot write '" + target.string() + "' (disk full, or no permission on the output folder?)");
     }
     fs::rename(tmp, target, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
+    if (ec) failOutput(&m_filename, "cannot rename '" + tmp.string() + "': " + ec.message());
     m_written.emplace_back(t, (fs::path(m_base).parent_path() / fileName).string());
     const double now = core::timerNow();  // steady_clock, or the clock a test injects (setTimerClock)
     if (m_written.size() <= 100 || now - m_lastCollection >= 1.0) {
