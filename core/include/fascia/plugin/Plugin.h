@@ -5,8 +5,9 @@
 /// Bumped whenever a change to the core breaks binary compatibility with built plugins.
 /// 2: BaseIntegrator::stableTimeStep, BaseConstraint::prescribesMotion and BaseObserver::observeFinal
 /// (new virtual functions) and the load-curve parameters.
-/// 3: SourceLoc gained a byte offset (its size changed), Base::failOutput.
-#define FASCIA_ABI_VERSION 3
+/// 3: BaseTopology holds the boundary triangles (a new member), BaseVisualSurface.
+/// 4: SourceLoc gained a byte offset (its size changed), Base::failOutput.
+#define FASCIA_ABI_VERSION 4
 
 namespace fascia::core {
 
