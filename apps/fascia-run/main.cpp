@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -205,9 +206,11 @@ int main(int argc, char** argv) {
         if (steps < 0) {
             if (T > 0) sim->checkEndTime(T);
             const double n = T > 0 ? std::ceil(T / sim->dt() - 1e-9) : 100.0;
-            if (!(n <= double(kMaxSteps)))
-                throwInputError({scene, sim->root().loc().line}, "time " + std::to_string(T) + " s at dt = " +
-                                                                     std::to_string(sim->dt()) + " s is more than 1e12 steps");
+            if (!(n <= double(kMaxSteps))) {
+                std::ostringstream msg;
+                msg << "time " << T << " s at dt = " << sim->dt() << " s is more than 1e12 steps";
+                throwInputError({scene, sim->root().loc().line}, msg.str());
+            }
             steps = T > 0 ? sim->stepsUntil(T) : long(n);
         }
         sim->start();  // the scene is valid: only now do the observers write the initial state

@@ -55,6 +55,10 @@ void Base::fail(const BaseParam& p, const std::string& message, std::vector<std:
     throwInputError(p.loc().empty() ? m_loc : p.loc(), who(*this) + ": " + message, std::move(notes));
 }
 
+void Base::failOutput(const BaseParam* p, const std::string& message, std::vector<std::string> notes) const {
+    throwOutputError(p && p->isSet() && !p->loc().empty() ? p->loc() : m_loc, who(*this) + ": " + message, std::move(notes));
+}
+
 void Base::warn(const std::string& message) const {
     const std::string where = m_loc.empty() ? std::string() : m_loc.str() + ": ";
     std::cerr << where << "warning: " << who(*this) << ": " << message << "\n";

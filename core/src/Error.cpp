@@ -7,6 +7,7 @@ namespace fascia::core {
 
 std::string SourceLoc::str() const {
     if (file.empty()) return {};
+    if (byte >= 0) return file + ": byte " + std::to_string(byte);
     return line > 0 ? file + ":" + std::to_string(line) : file;
 }
 

@@ -1,5 +1,7 @@
 #include "fascia/scene/Node.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 
 namespace fascia::core {
@@ -110,13 +112,27 @@ void SceneContext::claimOutput(const std::string& path, const Base& who) {
     std::error_code ec;
     const fs::path dir = fs::absolute(outputDir.empty() ? "." : outputDir, ec).lexically_normal();
     const fs::path rel = fs::absolute(path, ec).lexically_normal().lexically_relative(dir);
+    const BaseParam* filename = who.findParam("filename");
+    if (fs::path(path).filename().empty()) {
+        const std::string msg = "writes '" + path + "', which names a folder, not a file";
+        if (filename && filename->isSet()) who.fail(*filename, msg, {"give filename a file name, e.g. \"liver\""});
+        who.fail(msg);
+    }
     if (rel.empty() || *rel.begin() == ".." || *rel.begin() == ".") {
         const std::string msg = "writes '" + path + "', which is outside the output folder '" + outputDir + "'";
         const std::vector<std::string> notes{"output file names are relative to the output folder (fascia-run --output) "
                                              "and stay inside it: no absolute path, no '..'"};
-        if (const BaseParam* p = who.findParam("filename"); p && p->isSet()) who.fail(*p, msg, notes);
+        if (filename && filename->isSet()) who.fail(*filename, msg, notes);
         who.fail(msg, notes);
     }
+    // the file must be creatable: its nearest existing folder is a folder this process may write into
+    // (checked now, before anything is written; the folders below it are created at the first write)
+    fs::path up = fs::path(path).parent_path();
+    while (!up.empty() && !fs::exists(up, ec)) up = up.parent_path();
+    if (!up.empty() && !fs::is_directory(up, ec))
+        who.failOutput(filename, "cannot write '" + path + "': '" + up.string() + "' is a file, not a folder");
+    if (!up.empty() && ::access(up.c_str(), W_OK | X_OK) != 0)
+        who.failOutput(filename, "cannot write '" + path + "': no permission to write into '" + up.string() + "'");
     const std::string me = who.path() + (who.loc().empty() ? "" : " (" + who.loc().str() + ")");
     auto [it, fresh] = outputs.emplace(path, me);
     if (!fresh && it->second != me)

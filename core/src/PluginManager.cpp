@@ -61,7 +61,7 @@ void PluginManager::loadDefaultPlugins() {
     for (auto& d : envPluginDirs()) {
         std::error_code ec;
         if (!fs::is_directory(d, ec))
-            throwInputError({}, "FASCIA_PLUGIN_PATH names '" + d + "', which is not a folder",
+            throwInputError({"FASCIA_PLUGIN_PATH", 0}, "'" + d + "' is not a folder",
                             {"set FASCIA_PLUGIN_PATH to a colon-separated list of folders holding plugins"});
         for (auto& f : sharedLibrariesIn(d)) loadFile(f);
     }
@@ -80,7 +80,7 @@ const LoadedPlugin& PluginManager::load(const std::string& name, const SourceLoc
     if (looksLikePath) {
         if (fs::path(name).is_absolute()) candidates.push_back(name);
         else
-            for (auto& d : dirs) candidates.push_back((fs::path(d) / name).string());
+            for (auto& d : dirs) candidates.push_back((fs::path(d) / name).lexically_normal().string());
     } else {
         std::string underscored = name;
         std::replace(underscored.begin(), underscored.end(), '.', '_');
@@ -92,6 +92,12 @@ const LoadedPlugin& PluginManager::load(const std::string& name, const SourceLoc
     for (auto& c : candidates) {
         std::error_code ec;
         if (fs::is_regular_file(c, ec)) return loadFile(c, loc);
+    }
+    for (auto& c : candidates) {
+        std::error_code ec;
+        if (fs::exists(c, ec))
+            throwInputError(loc, "plugin '" + name + "' is '" + c + "', which is " +
+                                     (fs::is_directory(c, ec) ? "a folder" : "no regular file") + ", not a shared library");
     }
     std::string searched;
     for (auto& d : dirs) searched += (searched.empty() ? "" : ", ") + d;

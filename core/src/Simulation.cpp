@@ -235,6 +235,7 @@ void Simulation::init() {
 void Simulation::start() {
     if (!m_initialised) init();
     if (m_started) return;
+    createOutputDir();
     m_started = true;
     for (auto* o : m_observers) {
         ScopedTimer t(o->timer());
@@ -307,13 +308,29 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
 void Simulation::setOutputDir(const std::string& dir) {
     namespace fs = std::filesystem;
     std::error_code ec;
+    // checked now, created by start(): a scene found invalid after loading leaves no folder behind
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        throwOutputError({}, "output folder '" + dir + "' is a file, not a folder", {"give --output a folder (it is created when missing)"});
-    fs::create_directories(dir, ec);
-    if (ec) throwOutputError({}, "cannot create output folder '" + dir + "': " + ec.message());
-    if (::access(dir.c_str(), W_OK | X_OK) != 0)
-        throwOutputError({}, "cannot write into output folder '" + dir + "': " + std::strerror(errno));
+        throwOutputError({dir, 0}, "output folder '" + dir + "' is a file, not a folder", {"give --output a folder (it is created when missing)"});
+    if (fs::exists(dir, ec)) {
+        if (::access(dir.c_str(), W_OK | X_OK) != 0)
+            throwOutputError({dir, 0}, "cannot write into output folder '" + dir + "': " + std::strerror(errno));
+    } else {
+        fs::path up = fs::absolute(dir, ec).parent_path();
+        while (!up.empty() && !fs::exists(up, ec) && up != up.parent_path()) up = up.parent_path();
+        if (!fs::is_directory(up, ec))
+            throwOutputError({dir, 0}, "cannot create output folder '" + dir + "': " + std::strerror(ENOTDIR));
+        if (::access(up.c_str(), W_OK | X_OK) != 0)
+            throwOutputError({dir, 0}, "cannot create output folder '" + dir + "': " + std::strerror(errno));
+    }
     m_root->context().outputDir = dir;
+}
+
+void Simulation::createOutputDir() const {
+    const std::string& dir = m_root->context().outputDir;
+    if (dir.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwOutputError({dir, 0}, "cannot create output folder '" + dir + "': " + ec.message());
 }
 
 const std::string& Simulation::outputDir() const { return m_root->context().outputDir; }
@@ -373,10 +390,12 @@ constexpr double kTimeTolerance = 1e-9;
 
 void Simulation::checkEndTime(double T) const {
     requireDt();
-    if (m_dt > (T - m_time) * (1 + kTimeTolerance))
+    // the end time itself, not the time left: a run that has less than one dt left to T takes one
+    // shortened step, so the rule is the same before the first step and after any (a restart included)
+    if (m_dt > T * (1 + kTimeTolerance))
         m_root->fail(m_root->dt.isSet() ? static_cast<const BaseParam&>(m_root->dt) : m_root->endTime,
-                     "dt = " + shortNumber(m_dt) + " s is larger than the time to run, " + shortNumber(T - m_time) +
-                         " s (end time " + shortNumber(T) + " s): not even one step fits",
+                     "dt = " + shortNumber(m_dt) + " s is larger than the end time " + shortNumber(T) +
+                         " s: not even one step fits",
                      {"make dt smaller than the end time, or the end time (endTime, --time) longer"});
 }
 
@@ -403,7 +422,7 @@ void Simulation::runUntil(double T) {
     if (!m_initialised) init();
     requireDt();
     if (!std::isfinite(T)) throwInputError({}, "end time " + std::to_string(T) + " s is not a finite number");
-    if (m_step == 0) checkEndTime(T);  // before the observers write the initial state
+    checkEndTime(T);  // at every call (before the observers write the initial state on the first)
     start();
     while (T - m_time > kTimeTolerance * m_dt) stepToward(T);
 }

@@ -63,7 +63,7 @@ public:
     GmshReader(const std::string& text, const std::string& file, MeshBuilder& b) : m_sc(text, file), m_file(file), m_b(b) {}
 
     void read() {
-        if (!m_sc.nextRecord()) fail(m_file, 0, "mesh file '" + m_file + "' is empty");
+        if (!m_sc.nextRecord()) fail(m_file, 1, "mesh file '" + m_file + "' is empty");
         const std::string_view first = m_sc.token();
         if (first == "$NOD" || first == "$NOE") {
             m_version = 1;
@@ -116,8 +116,10 @@ public:
                 skipSection(std::string(tok.substr(1)), line);  // $NodeData, $Periodic, $Comments, ...
             }
         }
-        if (!m_haveNodes) fail(m_file, 0, "the file has no $Nodes section");
-        if (!m_haveElements) fail(m_file, 0, m_version == 1 ? "the file has no $ELM section" : "the file has no $Elements section");
+        // the file ends where the missing section was due
+        if (!m_haveNodes) fail(m_file, std::max(1, m_sc.line()), m_version == 1 ? "the file ends without a $NOD section" : "the file ends without a $Nodes section");
+        if (!m_haveElements)
+            fail(m_file, std::max(1, m_sc.line()), m_version == 1 ? "the file ends without an $ELM section" : "the file ends without an $Elements section");
     }
 
 private:

@@ -321,6 +321,7 @@ private:
         mesh.points.resize(np);
         for (size_t i = 0; i < np; ++i) mesh.points[i] = Vec3(m_points[3 * i], m_points[3 * i + 1], m_points[3 * i + 2]);
         if (!m_sc.binary()) m_b.origin.nodeLine.assign(m_pointWhere.begin(), m_pointWhere.end());
+        else m_b.origin.nodeByte = m_pointWhere;
         const DataArray* groups = groupArray();
         std::vector<int> nodes;
         for (long long c = 0; c < std::max(m_nCells, 0LL); ++c) {
@@ -352,7 +353,7 @@ private:
                 group = int(std::lround(g));
             }
             addVtkCell(m_b, c, int(type), nodes.data(), nodes.size(), group,
-                       m_sc.binary() ? 0 : int(m_cellWhere[size_t(c)]));
+                       m_sc.binary() ? 0 : int(m_cellWhere[size_t(c)]), m_sc.binary() ? m_cellWhere[size_t(c)] : -1);
         }
         for (const auto& a : m_cellArrays)
             if (a.tuples == m_nCells) addVtkCellArray(m_b, a.name, int(a.components), a.values.data());

@@ -16,7 +16,7 @@ namespace fascia::meshio::detail {
 /// arrays), and POINT_DATA, FIELD and METADATA blocks, which are read and ignored. Kept cells,
 /// groups and cell arrays as readMesh documents. Every count is checked against the bytes left in
 /// the file before anything is allocated; every error is located at its line (ASCII) or byte
-/// offset (BINARY: "file: error: byte N: ...").
+/// offset (BINARY: "file: byte N: error: ...").
 void readLegacyVtk(const std::string& path, MeshBuilder& b);
 
 } // namespace fascia::meshio::detail

@@ -2,7 +2,7 @@
 /// The token and array scanner of the legacy VTK reader (LegacyVTKReader.cpp): keywords and counts
 /// are text, the arrays are text (ASCII files) or big-endian binary (BINARY files). Every count is
 /// checked against the bytes left in the file before anything is allocated, and every error is
-/// located: "file:N: error: ..." at the line of an ASCII file, "file: error: byte N: ..." at the byte
+/// located: "file:N: error: ..." at the line of an ASCII file, "file: byte N: error: ..." at the byte
 /// offset of a BINARY file. Private to the readers.
 #include "ReaderSupport.h"
 
@@ -73,7 +73,7 @@ public:
 
     /// An input error at `where` (a line of an ASCII file, a byte offset of a binary one).
     [[noreturn]] void failAt(long long at, const std::string& message) const {
-        if (m_binary) fail(m_file, 0, "byte " + std::to_string(at) + ": " + message);
+        if (m_binary) failAtByte(m_file, at, message);
         fail(m_file, int(at), message);
     }
     [[noreturn]] void failHere(const std::string& message) const { failAt(where(), message); }

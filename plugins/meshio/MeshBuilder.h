@@ -16,6 +16,8 @@ struct ElementOrigin {
     std::vector<int> nodeLine;             ///< per node (empty: unknown)
     std::vector<long long> nodeId;         ///< file id per node (empty: the index is the id)
     std::vector<int> tetLine, hexLine;     ///< per element (empty: unknown)
+    /// Per node / element of a BINARY file, its byte offset instead of a line (empty: a text file or unknown).
+    std::vector<long long> nodeByte, tetByte, hexByte;
     std::vector<long long> tetNumber, hexNumber;  ///< file number per element (empty: none)
     std::string elementWord = "element";   ///< "cell" for VTK files
 };

@@ -13,6 +13,12 @@ void MeshLoader::init() {
     ReadReport report;
     MeshData mesh;
     try {
+        checkMeshFile(m_filename.get().resolved);
+    } catch (const core::Error& e) {
+        // no place in the mesh file is at fault: the error is where the scene names the file
+        fail(m_filename, e.message(), e.notes());
+    }
+    try {
         mesh = readMesh(m_filename.get().resolved, opt, &report);
     } catch (const core::Error& e) {
         // the reader's location is inside the mesh file; add where the scene asked for it

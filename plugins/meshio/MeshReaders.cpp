@@ -16,8 +16,22 @@
 
 namespace fascia::meshio {
 
+void checkMeshFile(const std::string& path) {
+    using namespace detail;
+    const std::string ext = lowerExtension(path);
+    if (ext != ".msh" && ext != ".vtk" && ext != ".vtu" && ext != ".node" && ext != ".ele") {
+        fail(path, 0,
+             (ext.empty() ? std::string("mesh file '") + path + "' has no extension"
+                          : "unknown mesh file extension '" + ext + "' of '" + path + "'") +
+                 ": " + kSupportedFormats);
+    }
+    if (ext == ".node" || ext == ".ele") checkTetGenFiles(path);
+    else checkReadable(path);
+}
+
 MeshData readMesh(const std::string& path, const ReadOptions& opt, ReadReport* report) {
     using namespace detail;
+    checkMeshFile(path);
     ReadReport local;
     ReadReport& rep = report ? *report : local;
     rep = ReadReport{};
@@ -36,12 +50,6 @@ MeshData readMesh(const std::string& path, const ReadOptions& opt, ReadReport* r
             readTetGen(path, b);
     } catch (const std::bad_alloc&) {
         fail(path, 0, "mesh file '" + path + "' announces more records than fit in memory: its header is corrupt");
-    }
-    if (ext != ".msh" && ext != ".vtk" && ext != ".vtu" && ext != ".node" && ext != ".ele") {
-        fail(path, 0,
-             (ext.empty() ? std::string("mesh file '") + path + "' has no extension"
-                          : "unknown mesh file extension '" + ext + "' of '" + path + "'") +
-                 ": " + kSupportedFormats);
     }
     b.finishGroups();
     validate(b.mesh, b.origin, opt, rep);

@@ -7,9 +7,10 @@
 /// VTK support: ...").
 ///
 /// Every problem with the input throws fascia::core::Error (ErrorKind::Input) located at the line of
-/// the mesh file where it is ("file:line: error: ..."; in a BINARY legacy .vtk file at its byte
-/// offset: "file: error: byte N: ..."), or at line 0 when no line is known (.vtu files,
-/// file-level problems).
+/// the mesh file where it is ("file:line: error: ..."; in a BINARY legacy .vtk file and in the
+/// headers of a .vtu at its byte offset: "file: byte N: error: ..."), or at line 0 ("file: error:
+/// ...") when no place in the file is at fault: a file that cannot be read as a mesh (checkMeshFile),
+/// or a mesh without volume elements, a .vtu that VTK itself refuses or whose cells name missing points.
 #include "fascia/base/Types.h"
 
 #include <array>
@@ -55,6 +56,12 @@ struct ReadReport {
 ///
 /// The mesh is then checked with validateMesh().
 fascia::MeshData readMesh(const std::string& path, const ReadOptions& opt = {}, ReadReport* report = nullptr);
+
+/// The checks readMesh makes before it reads: fails (an input error at line 0 of path) when path has
+/// no known extension, does not exist, is no regular file (a folder, FIFO or device is refused from
+/// its type, without opening it), is larger than core::kMaxMeshFileBytes or cannot be opened; for
+/// TetGen, when either of the two files fails so. MeshLoader locates these at its filename.
+void checkMeshFile(const std::string& path);
 
 /// Checks a mesh and throws an input error located in `file` on the first problem: no volume
 /// elements, an element naming a node that does not exist, a non-finite coordinate, a degenerate

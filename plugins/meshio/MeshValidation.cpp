@@ -22,9 +22,15 @@ std::string elementName(const ElementOrigin& o, bool hex, size_t i) {
     return std::string(kind) + " " + std::to_string(i) + " (0-based)";
 }
 
-int elementLine(const ElementOrigin& o, bool hex, size_t i) {
-    const auto& lines = hex ? o.hexLine : o.tetLine;
-    return i < lines.size() ? lines[i] : 0;
+/// Where the file has item i: at bytes[i] (a BINARY file), on lines[i], or nowhere known (line 0).
+core::SourceLoc placeOf(const std::string& file, const std::vector<int>& lines, const std::vector<long long>& bytes,
+                        size_t i) {
+    if (i < bytes.size()) return {file, 0, bytes[i]};
+    return {file, i < lines.size() ? lines[i] : 0};
+}
+
+core::SourceLoc elementPlace(const ElementOrigin& o, bool hex, size_t i) {
+    return placeOf(o.elementFile, hex ? o.hexLine : o.tetLine, hex ? o.hexByte : o.tetByte, i);
 }
 
 template <size_t N>
@@ -83,22 +89,22 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
         for (size_t i = 0; i < elems.size(); ++i)
             for (int v : elems[i])
                 if (v < 0 || v >= nPoints)
-                    fail(o.elementFile, lineOf(i),
+                    core::throwInputError(lineOf(i),
                          nameOf(i) + " names node " + std::to_string(v) + ", but the mesh has " +
                              plural(nPoints, "node") + " (valid " + kind + " node indices are 0 to " +
                              std::to_string(nPoints - 1) + "); fix the element's node list");
     };
-    checkNodes(mesh.tetrahedra, "tetrahedron", [&](size_t i) { return elementLine(o, false, i); },
+    checkNodes(mesh.tetrahedra, "tetrahedron", [&](size_t i) { return elementPlace(o, false, i); },
                [&](size_t i) { return elementName(o, false, i); });
-    checkNodes(mesh.hexahedra, "hexahedron", [&](size_t i) { return elementLine(o, true, i); },
+    checkNodes(mesh.hexahedra, "hexahedron", [&](size_t i) { return elementPlace(o, true, i); },
                [&](size_t i) { return elementName(o, true, i); });
-    checkNodes(mesh.triangles, "triangle", [](size_t) { return 0; },
+    checkNodes(mesh.triangles, "triangle", [&](size_t) { return core::SourceLoc{o.elementFile, 0}; },
                [&](size_t i) { return "triangle " + std::to_string(i) + " (0-based)"; });
 
     for (size_t i = 0; i < mesh.points.size(); ++i) {
         const Vec3& x = mesh.points[i];
         if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
-            fail(o.nodeFile, i < o.nodeLine.size() ? o.nodeLine[i] : 0,
+            core::throwInputError(placeOf(o.nodeFile, o.nodeLine, o.nodeByte, i),
                  "node " + nodeName(o, int(i)) + " has a non-finite coordinate (" + fmtNumber(x[0]) + " " +
                      fmtNumber(x[1]) + " " + fmtNumber(x[2]) + "); every coordinate must be a finite number");
     }
@@ -119,7 +125,7 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
                 v = hexahedronVolume(mesh.points, e);
             const double l3 = longestEdgeCubed(mesh.points, e);
             if (!(std::abs(v) > kDegenerate * l3))
-                fail(o.elementFile, elementLine(o, hex, i),
+                core::throwInputError(elementPlace(o, hex, i),
                      elementName(o, hex, i) + " is degenerate: its volume is " + fmtNumber(v) +
                          ", zero relative to its longest edge cubed (" + fmtNumber(l3) + "); its nodes (" +
                          nodeListText(o, e) + ") are repeated, coincide or lie in one plane: "
@@ -146,7 +152,7 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
         if (inverted > 1)
             notes.push_back(std::to_string(inverted) + " of " + std::to_string(elems.size()) + " " + kind +
                             " are inverted");
-        fail(o.elementFile, elementLine(o, hex, firstInverted),
+        core::throwInputError(elementPlace(o, hex, firstInverted),
              elementName(o, hex, firstInverted) + " is inverted: its signed volume is " + fmtNumber(firstVolume) +
                  " < 0 with its nodes in the file's order (" + nodeListText(o, elems[firstInverted]) +
                  "); reorder its nodes, or set fixOrientation to flip inverted elements when loading",

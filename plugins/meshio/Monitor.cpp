@@ -124,13 +124,8 @@ void Monitor::init() {
     const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
     m_path = (fs::path(node()->context().outputDir) / file).string();
     node()->context().claimOutput(m_path, *this);
-    m_header = h.str();  // the file is created at the first observation: init writes nothing,
-    m_out.reset();       // but refuses a file that could not be created (its nearest folder is not writable)
-    fs::path up = fs::path(m_path).parent_path();
-    std::error_code ec;
-    while (!up.empty() && !fs::exists(up, ec)) up = up.parent_path();
-    if (!up.empty() && (!fs::is_directory(up, ec) || ::access(up.c_str(), W_OK | X_OK) != 0))
-        fail(m_filename, "cannot write '" + m_path + "'");
+    m_header = h.str();  // the file is created at the first observation: init writes nothing (claimOutput
+    m_out.reset();       // has refused a file that could not be created)
 }
 
 void Monitor::observeFinal(double t, long step) {
@@ -147,7 +142,7 @@ void Monitor::writeRow(double t, long step) {
         std::error_code ec;
         fs::create_directories(fs::path(m_path).parent_path(), ec);
         m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
-        if (!*m_out) fail(m_filename, "cannot write '" + m_path + "'");
+        if (!*m_out) failOutput(&m_filename, "cannot write '" + m_path + "'");
         *m_out << m_header << "\n";
         m_out->precision(12);
     }

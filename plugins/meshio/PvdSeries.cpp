@@ -17,11 +17,11 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out << text;
         out.flush();
-        if (!out) throw core::Error(core::ErrorKind::Internal, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
+        if (!out) throw core::Error(core::ErrorKind::Output, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
     }
     std::error_code ec;
     fs::rename(tmp, p, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
+    if (ec) throw core::Error(core::ErrorKind::Output, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
 }
 
 void removeStaleTemporaries(const std::string& pvdPath, const std::string& stem) {

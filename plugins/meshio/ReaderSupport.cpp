@@ -23,6 +23,10 @@ void fail(const std::string& file, int line, const std::string& message, std::ve
     fascia::core::throwInputError(fascia::core::SourceLoc{file, line}, message, std::move(notes));
 }
 
+void failAtByte(const std::string& file, long long byte, const std::string& message, std::vector<std::string> notes) {
+    fascia::core::throwInputError(fascia::core::SourceLoc{file, 0, byte}, message, std::move(notes));
+}
+
 std::string quoted(std::string_view s) {
     std::string out = "'";
     out.append(s.substr(0, 60));

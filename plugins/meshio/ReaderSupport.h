@@ -14,6 +14,10 @@ extern const char* const kSupportedFormats;
 [[noreturn]] void fail(const std::string& file, int line, const std::string& message,
                        std::vector<std::string> notes = {});
 
+/// Throws an input error located at byte offset `byte` of a binary file ("file: byte N: error: ...").
+[[noreturn]] void failAtByte(const std::string& file, long long byte, const std::string& message,
+                             std::vector<std::string> notes = {});
+
 /// 's' in single quotes, cut after 60 characters so that a run of garbage stays readable.
 std::string quoted(std::string_view s);
 /// The extension of path, lower case, with its dot (".msh"); empty when there is none.

@@ -78,11 +78,11 @@ void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
     else writer->SetCompressorTypeToNone();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
-        throw core::Error(core::ErrorKind::Internal, m_owner->loc(), m_owner->className() + " '" + m_owner->name() + "': cannot write '" +
+        throw core::Error(core::ErrorKind::Output, m_owner->loc(), m_owner->className() + " '" + m_owner->name() + "': cannot write '" +
                                                                           target.string() + "' (disk full, or no permission on the output folder?)");
     }
     fs::rename(tmp, target, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, m_owner->loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
+    if (ec) throw core::Error(core::ErrorKind::Output, m_owner->loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
     m_pvd.add(t, fileName);
 }
 

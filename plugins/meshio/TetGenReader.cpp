@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 void readNodeFile(const std::string& nodeFile, MeshBuilder& b, std::vector<long long>& ids, std::vector<int>& lines) {
     const std::string nodeText = readWholeFile(nodeFile);
     TextScanner sn(nodeText, nodeFile, '#');
-    if (!sn.nextRecord()) fail(nodeFile, 0, "TetGen node file '" + nodeFile + "' is empty");
+    if (!sn.nextRecord()) fail(nodeFile, 1, "TetGen node file '" + nodeFile + "' is empty");
     sn.setRecordFormat("'#points dimension #attributes #boundary-markers'");
     const long long n = sn.integer("number of points");
     const long long dim = sn.integer("dimension");
@@ -62,7 +62,7 @@ void readNodeFile(const std::string& nodeFile, MeshBuilder& b, std::vector<long 
 void readEleFile(const std::string& eleFile, const std::string& nodeFile, const NodeIdMap& map, MeshBuilder& b) {
     const std::string eleText = readWholeFile(eleFile);
     TextScanner se(eleText, eleFile, '#');
-    if (!se.nextRecord()) fail(eleFile, 0, "TetGen element file '" + eleFile + "' is empty");
+    if (!se.nextRecord()) fail(eleFile, 1, "TetGen element file '" + eleFile + "' is empty");
     se.setRecordFormat("'#tetrahedra nodes-per-tetrahedron #attributes'");
     const long long m = se.integer("number of tetrahedra");
     const long long per = se.integer("nodes per tetrahedron");
@@ -113,9 +113,9 @@ void readEleFile(const std::string& eleFile, const std::string& nodeFile, const 
                  " tetrahedra announced on line " + std::to_string(eleCountLine));
 }
 
-} // namespace
-
-void readTetGen(const std::string& given, MeshBuilder& b) {
+/// The .node and .ele files of the TetGen mesh named by `given` (either of them), the other one with
+/// an extension of the same case.
+std::pair<std::string, std::string> tetGenFiles(const std::string& given) {
     const std::string ext = lowerExtension(given);
     fs::path base = fs::path(given);
     const bool extUpper = !ext.empty() && fs::path(given).extension().string() != ext;
@@ -126,16 +126,26 @@ void readTetGen(const std::string& given, MeshBuilder& b) {
             for (auto& c : x) c = char(std::toupper((unsigned char)c));
         return p.replace_extension(x).string();
     };
-    const std::string nodeFile = ext == ".node" ? given : sibling(".node");
-    const std::string eleFile = ext == ".ele" ? given : sibling(".ele");
-    const std::string other = ext == ".node" ? eleFile : nodeFile;
-    {
-        std::error_code ec;
-        if (!fs::exists(other, ec))
-            fail(given, 0,
-                 "a TetGen mesh needs both files: '" + other + "' was not found beside '" + given +
-                     "' (TetGen writes name.node with the nodes and name.ele with the tetrahedra)");
-    }
+    return {ext == ".node" ? given : sibling(".node"), ext == ".ele" ? given : sibling(".ele")};
+}
+
+} // namespace
+
+void checkTetGenFiles(const std::string& given) {
+    const auto [nodeFile, eleFile] = tetGenFiles(given);
+    const std::string other = nodeFile == given ? eleFile : nodeFile;
+    std::error_code ec;
+    if (!fs::exists(other, ec))
+        fail(given, 0,
+             "a TetGen mesh needs both files: '" + other + "' was not found beside '" + given +
+                 "' (TetGen writes name.node with the nodes and name.ele with the tetrahedra)");
+    checkReadable(nodeFile);
+    checkReadable(eleFile);
+}
+
+void readTetGen(const std::string& given, MeshBuilder& b) {
+    checkTetGenFiles(given);
+    const auto [nodeFile, eleFile] = tetGenFiles(given);
     b.report->format = "TetGen";
     b.origin.nodeFile = nodeFile;
     b.origin.elementFile = eleFile;

@@ -11,4 +11,8 @@ namespace fascia::meshio::detail {
 /// beside it, with an extension of the same case) into b.
 void readTetGen(const std::string& given, MeshBuilder& b);
 
+/// Fails (at line 0 of `given`) unless both files of the TetGen mesh named by `given` exist and can
+/// be read (checkReadable).
+void checkTetGenFiles(const std::string& given);
+
 } // namespace fascia::meshio::detail

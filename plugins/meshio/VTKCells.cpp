@@ -46,13 +46,14 @@ int vtkKeptCellSize(int type) {
     }
 }
 
-void addVtkCell(MeshBuilder& b, long long index, int type, const int* nodes, size_t n, int group, int line) {
+void addVtkCell(MeshBuilder& b, long long index, int type, const int* nodes, size_t n, int group, int line, long long byte) {
     auto& mesh = b.mesh;
     if (type == kVtkTetra && n == 4) {
         mesh.tetrahedra.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
         mesh.tetrahedronGroup.push_back(group);
         b.origin.tetNumber.push_back(index);
         if (line > 0) b.origin.tetLine.push_back(line);
+        if (byte >= 0) b.origin.tetByte.push_back(byte);
     } else if ((type == kVtkHexahedron || type == kVtkVoxel) && n == 8) {
         std::array<int, 8> h;
         if (type == kVtkVoxel)  // voxels number their corners like a grid: (0,1,3,2, 4,5,7,6)
@@ -63,6 +64,7 @@ void addVtkCell(MeshBuilder& b, long long index, int type, const int* nodes, siz
         mesh.hexahedronGroup.push_back(group);
         b.origin.hexNumber.push_back(index);
         if (line > 0) b.origin.hexLine.push_back(line);
+        if (byte >= 0) b.origin.hexByte.push_back(byte);
     } else if (type == kVtkTriangle && n == 3) {
         mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
         mesh.triangleGroup.push_back(group);

@@ -26,9 +26,10 @@ int vtkKeptCellSize(int type);
 /// Adds cell `index` of the file (VTK type `type`, nodes[0..n) already checked against the point
 /// count) to b: a tetrahedron (10) with 4 points, a hexahedron (12) or voxel (11, reordered to
 /// hexahedron order) with 8, a triangle (5) with 3; any other cell is counted as skipped under
-/// vtkCellName(type). line > 0 is where the cell is in an ASCII file (for validation errors). The
-/// cell's nodes join physical group `group` (0: none).
-void addVtkCell(MeshBuilder& b, long long index, int type, const int* nodes, size_t n, int group, int line);
+/// vtkCellName(type). line > 0 is where the cell is in an ASCII file, byte >= 0 where it is in a
+/// BINARY one (for validation errors). The cell's nodes join physical group `group` (0: none).
+void addVtkCell(MeshBuilder& b, long long index, int type, const int* nodes, size_t n, int group, int line,
+                long long byte = -1);
 
 /// A cell array of the file (tuples * components values, in cell order) into b.mesh.cellArrays,
 /// restricted to the kept volume cells (the tetrahedra, then the hexahedra, by b.origin's cell

@@ -223,11 +223,10 @@ void VTKExporter::writeStep(double t, long step) {
     else writer->SetCompressorTypeToNone();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
-        throw core::Error(core::ErrorKind::Internal, loc(), className() + " '" + name() + "': cannot write '" + target.string() +
-                                         "' (disk full, or no permission on the output folder?)");
+        failOutput(&m_filename, "cannot write '" + target.string() + "' (disk full, or no permission on the output folder?)");
     }
     fs::rename(tmp, target, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
+    if (ec) failOutput(&m_filename, "cannot rename '" + tmp.string() + "': " + ec.message());
     m_pvd.add(t, fileName);
     if (m_surfaceSeries.started()) writeSurface(t, step);
 }

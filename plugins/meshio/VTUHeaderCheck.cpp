@@ -53,7 +53,7 @@ public:
 
 private:
     [[noreturn]] void failAt(size_t at, const std::string& message) const {
-        fail(m_path, 0, "byte " + std::to_string(at) + ": " + message);
+        failAtByte(m_path, (long long)at, message);
     }
     static std::string attribute(std::string_view tag, const char* key) {
         const std::string k = std::string(" ") + key + "=\"";

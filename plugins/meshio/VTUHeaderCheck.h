@@ -6,7 +6,7 @@
 
 namespace fascia::meshio::detail {
 
-/// Fails with an error located at the byte offset of the problem ("file: error: byte N: ...") when
+/// Fails with an error located at the byte offset of the problem ("file: byte N: error: ...") when
 /// the .vtu at path announces more than it holds: a Piece's NumberOfPoints or NumberOfCells that its
 /// Points, cell types, offsets, point or cell data arrays do not have (one tuple each, so a cell
 /// type array shorter than the cells is an error), a binary or appended data header (UInt32 or

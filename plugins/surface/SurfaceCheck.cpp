@@ -92,7 +92,7 @@ bool requireClosedSurface(TriangleSurface& s, const std::string& who) {
         else
             what = "the surface is not closed: " + std::to_string(r.openEdges) + " open, " + std::to_string(r.nonManifoldEdges) +
                    " non-manifold and " + std::to_string(r.misorientedEdges) + " misoriented edges; the first at " + edge;
-        core::throwInputError(triangleLocation(s, tri), locationPrefix(s, tri) + what + "; " + who + " needs a closed, edge-manifold, "
+        core::throwInputError(triangleLocation(s, tri), what + "; " + who + " needs a closed, edge-manifold, "
                                                         "consistently oriented surface");
     }
     if (!(r.volume > 0)) {

@@ -22,7 +22,7 @@ namespace {
     core::throwInputError(core::SourceLoc{file, int(std::min<long long>(line, 2147483647LL))}, message);
 }
 [[noreturn]] void failByte(const std::string& file, long long byte, const std::string& message) {
-    core::throwInputError(core::SourceLoc{file, 0}, "byte " + std::to_string(byte) + ": " + message);
+    core::throwInputError(core::SourceLoc{file, 0, byte}, message);
 }
 
 std::string quoted(std::string_view s) {
@@ -322,13 +322,9 @@ TriangleSurface readSurface(const std::string& path) {
 }
 
 core::SourceLoc triangleLocation(const TriangleSurface& s, size_t tri) {
-    if (s.byteOffsets || tri >= s.origin.size()) return {s.file, 0};
+    if (tri >= s.origin.size()) return {s.file, 0};
+    if (s.byteOffsets) return {s.file, 0, s.origin[tri]};
     return {s.file, int(std::min<long long>(s.origin[tri], 2147483647LL))};
-}
-
-std::string locationPrefix(const TriangleSurface& s, size_t tri) {
-    if (!s.byteOffsets || tri >= s.origin.size()) return {};
-    return "byte " + std::to_string(s.origin[tri]) + ": ";
 }
 
 } // namespace fascia::surface

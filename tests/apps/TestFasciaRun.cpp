@@ -109,11 +109,11 @@ TEST_CASE("fascia-run refuses a dt larger than the end time with a located error
     w.write("end.xml", scene("dt=\"0.01\" endTime=\"0.004\""));
     auto r = w.run("end.xml");
     CHECK(r.code == 2);
-    CHECK_THAT(r.firstErrLine(), Contains("end.xml:1: error: Node 'root': dt = 0.01 s is larger than the time to run, 0.004 s "
-                                          "(end time 0.004 s): not even one step fits"));
+    CHECK_THAT(r.firstErrLine(), Contains("end.xml:1: error: Node 'root': dt = 0.01 s is larger than the end time 0.004 s: "
+                                          "not even one step fits"));
     auto r2 = w.run("end.xml --time 0.002 --dt 0.005");
     CHECK(r2.code == 2);
-    CHECK_THAT(r2.firstErrLine(), Contains("dt = 0.005 s is larger than the time to run, 0.002 s"));
+    CHECK_THAT(r2.firstErrLine(), Contains("dt = 0.005 s is larger than the end time 0.002 s"));
     CHECK(w.run("end.xml --time 0.01").code == 0);  // one whole step fits
 }
 

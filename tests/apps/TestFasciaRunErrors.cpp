@@ -166,17 +166,17 @@ TEST_CASE("An output folder that is a file or cannot be written gives exit code 
     w.write("taken", "a file");
     auto r = w.run("s.xml --steps 1 --output taken");
     CHECK(r.code == 1);
-    CHECK_THAT(r.err, StartsWith("error: output folder 'taken' is a file, not a folder"));
+    CHECK_THAT(r.err, StartsWith("taken: error: output folder 'taken' is a file, not a folder"));
     r = w.run("s.xml --steps 1 --output taken/sub");
     CHECK(r.code == 1);
-    CHECK_THAT(r.err, StartsWith("error: cannot create output folder 'taken/sub': "));
+    CHECK_THAT(r.err, StartsWith("taken/sub: error: cannot create output folder 'taken/sub': "));
     if (::geteuid() != 0) {  // root may write anywhere
         fs::create_directories(w.dir() / "ro");
         fs::permissions(w.dir() / "ro", fs::perms::owner_read | fs::perms::owner_exec);
         r = w.run("s.xml --steps 1 --output ro");
         fs::permissions(w.dir() / "ro", fs::perms::owner_all);
         CHECK(r.code == 1);
-        CHECK_THAT(r.err, StartsWith("error: cannot write into output folder 'ro': "));
+        CHECK_THAT(r.err, StartsWith("ro: error: cannot write into output folder 'ro': "));
     }
 }
 

@@ -143,10 +143,17 @@ TEST_CASE("a dt larger than the end time is a located error", "[Simulation]") {
         sim->runUntil(0.0015);
         FAIL("no error");
     } catch (const Error& e) {
-        CHECK_THAT(e.what(), Contains("scene.xml:1: error: Node 'root': dt = 0.002 s is larger than the time to run, 0.0015 s "
-                                      "(end time 0.0015 s): not even one step fits"));
+        CHECK_THAT(e.what(), Contains("scene.xml:1: error: Node 'root': dt = 0.002 s is larger than the end time 0.0015 s: "
+                                      "not even one step fits"));
     }
     CHECK(sim->stepCount() == 0);
     sim->runUntil(0.002);  // one whole step fits
     CHECK(sim->stepCount() == 1);
+    // after steps the rule is the same: the end time against dt, not the time left (0.0011 s is one
+    // shortened step; an end time of 0.0015 s is still an error, also once the run is past it)
+    sim->runUntil(0.0031);
+    CHECK(sim->stepCount() == 2);
+    CHECK(sim->time() == Approx(0.0031).epsilon(1e-12));
+    CHECK_THROWS_WITH(sim->runUntil(0.0015), Contains("dt = 0.002 s is larger than the end time 0.0015 s"));
+    CHECK(sim->stepCount() == 2);
 }

@@ -139,11 +139,12 @@ void requireError(const std::string& path, int line, long long byte, const std::
         CHECK(e.kind() == core::ErrorKind::Input);
         CHECK(e.loc().file == path);
         CHECK(e.loc().line == (byte >= 0 ? 0 : line));
+        CHECK(e.loc().byte == (byte >= 0 ? byte : -1));
     }
     INFO("message: " << what);
     REQUIRE(thrown);
     const std::string where =
-        byte >= 0 ? path + ": error: byte " + std::to_string(byte) + ": " : path + ":" + std::to_string(line) + ": error: ";
+        byte >= 0 ? path + ": byte " + std::to_string(byte) + ": error: " : path + ":" + std::to_string(line) + ": error: ";
     CHECK(what.rfind(where, 0) == 0);
     for (const auto& k : keys) CHECK_THAT(what, Catch::Contains(k));
 }

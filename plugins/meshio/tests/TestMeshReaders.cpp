@@ -96,6 +96,7 @@ struct Caught {
     std::string what;
     std::string file;
     int line = -1;
+    long long byte = -1;
     core::ErrorKind kind = core::ErrorKind::Internal;
 };
 
@@ -108,6 +109,7 @@ Caught readError(const std::string& path, const ReadOptions& opt = {}) {
         c.what = e.what();
         c.file = e.loc().file;
         c.line = e.loc().line;
+        c.byte = e.loc().byte;
         c.kind = e.kind();
     }
     return c;
@@ -123,8 +125,23 @@ void requireLocatedError(const std::string& path, const std::string& errorFile, 
     CHECK(c.kind == core::ErrorKind::Input);
     CHECK(c.file == errorFile);
     CHECK(c.line == line);
+    CHECK(c.byte == -1);
     const std::string where = line > 0 ? errorFile + ":" + std::to_string(line) + ": error: " : errorFile + ": error: ";
     CHECK(c.what.rfind(where, 0) == 0);
+    for (const auto& k : keys) CHECK_THAT(c.what, Catch::Contains(k));
+}
+
+/// Reading `path` fails with an input error located at byte offset `byte` of path ("path: byte N: error: ...").
+void requireErrorAtByte(const std::string& path, size_t byte, const std::vector<std::string>& keys) {
+    const Caught c = readError(path);
+    INFO("file: " << path);
+    INFO("message: " << c.what);
+    REQUIRE(c.thrown);
+    CHECK(c.kind == core::ErrorKind::Input);
+    CHECK(c.file == path);
+    CHECK(c.line == 0);
+    CHECK(c.byte == (long long)byte);
+    CHECK(c.what.rfind(path + ": byte " + std::to_string(byte) + ": error: ", 0) == 0);
     for (const auto& k : keys) CHECK_THAT(c.what, Catch::Contains(k));
 }
 
@@ -818,7 +835,7 @@ TEST_CASE("Bad VTK files fail with a located reason and no console output", "[Me
         const std::string p = tmp().write("cut.vtu", cut);
         // the half left holds the point and cell data, not the Points array (VTK writes it after them)
         REQUIRE(cut.find("<Points>") == std::string::npos);
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(cut.find("<Piece")) + ": the Piece announces 8 points "
+        requireErrorAtByte(p, cut.find("<Piece"), {"the Piece announces 8 points "
                                       "but has no Points array: the file is incomplete or truncated"});
     }
     SECTION("not a .vtu") {
@@ -847,7 +864,7 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
             for (size_t k = 0; k < w; ++k) text[data + word * w + k] = char(k < 8 ? (big >> (8 * k)) & 0xFF : 0);
         const std::string p = tmp().write("cube_bigblock.vtu", text);
         const size_t at = tagOffset(text, "offset=\"0\"");
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(at) + ": compressed block 0 announces 2300000000 bytes from",
+        requireErrorAtByte(p, at, {"compressed block 0 announces 2300000000 bytes from",
                                       "more than any compressor expands"});
     }
     SECTION("a compressed header announcing more blocks than the file holds") {
@@ -855,7 +872,7 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
         const size_t data = text.find('_', text.find("<AppendedData")) + 1;
         for (size_t k = 0; k < 4; ++k) text[data + k] = char(0x7F);  // the block count
         const std::string p = tmp().write("cube_blocks.vtu", text);
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(tagOffset(text, "offset=\"0\"")) + ": the compressed data header announces",
+        requireErrorAtByte(p, tagOffset(text, "offset=\"0\""), {"the compressed data header announces",
                                       "blocks, more than the file holds"});
     }
     SECTION("NumberOfPoints larger than the Points array") {
@@ -864,7 +881,7 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
         REQUIRE(at != std::string::npos);
         text.replace(at, 18, "NumberOfPoints=\"800000000000\"");
         const std::string p = tmp().write("cube_points.vtu", text);
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(tagOffset(text, "Name=\"Points\"")) + ": DataArray 'Points' of Points holds 24 values",
+        requireErrorAtByte(p, tagOffset(text, "Name=\"Points\""), {"DataArray 'Points' of Points holds 24 values",
                                       "NumberOfPoints 800000000000 needs 2400000000000"});
     }
     SECTION("a Piece with points but no Points array") {
@@ -873,8 +890,7 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
         REQUIRE((b != std::string::npos && e != std::string::npos));
         text.erase(b, e + 9 - b);
         const std::string p = tmp().write("cube_nopoints.vtu", text);
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(text.find("<Piece")) +
-                                      ": the Piece announces 8 points but has no Points array"});
+        requireErrorAtByte(p, text.find("<Piece"), {"the Piece announces 8 points but has no Points array"});
     }
     SECTION("a cell type array shorter than the cells") {
         std::string text = slurp(writeVtu("cube_t.vtu", g, true));
@@ -883,7 +899,7 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
         const size_t last = text.find_last_of("0123456789", text.find('<', body));  // drop the last type
         text.erase(last, 1);
         const std::string p = tmp().write("cube_types.vtu", text);
-        requireLocatedError(p, p, 0, {"byte " + std::to_string(tag) + ": DataArray 'types' of Cells holds 7 values",
+        requireErrorAtByte(p, tag, {"DataArray 'types' of Cells holds 7 values",
                                       "NumberOfCells 8 needs 8"});
     }
 }
@@ -997,7 +1013,7 @@ TEST_CASE("Missing, unreadable and unknown files fail with a clear message", "[M
     }
     SECTION("an empty file") {
         const std::string p = tmp().write("empty.msh", "");
-        requireLocatedError(p, p, 0, {"is empty"});
+        requireLocatedError(p, p, 1, {"is empty"});
     }
     SECTION("a folder") {
         const std::string p = tmp().file("folder.msh");

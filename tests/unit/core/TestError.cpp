@@ -24,6 +24,13 @@ TEST_CASE("An error without a location or without a line says so", "[Error]") {
     CHECK(SourceLoc{}.str().empty());
 }
 
+TEST_CASE("An error at a byte offset of a binary file is formatted file then byte then error", "[Error]") {
+    CHECK(SourceLoc{"m.vtk", 0, 0}.str() == "m.vtk: byte 0");
+    CHECK(SourceLoc{"m.vtk", 0, 123456789012}.str() == "m.vtk: byte 123456789012");
+    CHECK(Error::format({"m.vtk", 0, 290}, "CELLS: too many", {"read by X"}) ==
+          "m.vtk: byte 290: error: CELLS: too many\nm.vtk: byte 290: note: read by X");
+}
+
 TEST_CASE("throwInputError and throwSimulationError carry the kind that picks the exit code", "[Error]") {
     auto in = errorOf([] { throwInputError({"s.xml", 2}, "bad"); });
     REQUIRE(in);

@@ -41,6 +41,9 @@ public:
     [[noreturn]] void fail(const std::string& message, std::vector<std::string> notes = {}) const;
     /// Same, located at a parameter's attribute.
     [[noreturn]] void fail(const BaseParam& p, const std::string& message, std::vector<std::string> notes = {}) const;
+    /// An output of this object that cannot be written (ErrorKind::Output: fascia-run exits 1), located
+    /// at p's attribute when given and set, else at the object.
+    [[noreturn]] void failOutput(const BaseParam* p, const std::string& message, std::vector<std::string> notes = {}) const;
     /// A warning printed on stderr in compiler format.
     void warn(const std::string& message) const;
 

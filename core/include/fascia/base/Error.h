@@ -6,12 +6,14 @@
 
 namespace fascia::core {
 
-/// A place in an input file. line 0 means "the whole file"; an empty file means "no file".
+/// A place in an input file. line 0 means "the whole file"; an empty file means "no file". A
+/// binary file has no lines: its places are byte offsets (byte >= 0; line is then 0).
 struct SourceLoc {
     std::string file;
     int line = 0;
+    long long byte = -1;
     bool empty() const { return file.empty(); }
-    std::string str() const;   ///< "file:line" or "file" or ""
+    std::string str() const;   ///< "file:line", "file: byte N", "file" or ""
 };
 
 /// What kind of failure; fascia-run maps it to its exit code.
@@ -31,7 +33,8 @@ public:
     const std::string& message() const { return m_message; }
     const std::vector<std::string>& notes() const { return m_notes; }
 
-    /// Formats "file:line: error: message\nfile:line: note: n1\n...".
+    /// Formats "file:line: error: message\nfile:line: note: n1\n..." ("file: byte N: error: ..." at a
+    /// byte offset).
     static std::string format(const SourceLoc& loc, const std::string& message,
                               const std::vector<std::string>& notes);
 

@@ -6,7 +6,8 @@
 /// 2: BaseIntegrator::stableTimeStep, BaseConstraint::prescribesMotion and BaseObserver::observeFinal
 /// (new virtual functions) and the load-curve parameters.
 /// 3: BaseTopology holds the boundary triangles (a new member), BaseVisualSurface.
-#define FASCIA_ABI_VERSION 3
+/// 4: SourceLoc gained a byte offset (its size changed), Base::failOutput.
+#define FASCIA_ABI_VERSION 4
 
 namespace fascia::core {
 

@@ -24,7 +24,10 @@ struct SceneContext {
     /// Output files already claimed by a component (path -> who), so that two exporters never
     /// write over each other's files.
     std::map<std::string, std::string> outputs;
-    /// Claims an output file for `who`; a located error when another component has it.
+    /// Claims an output file for `who`, checked before anything is written: a located input error
+    /// when the path names a folder, leaves the output folder ('..', an absolute path) or another
+    /// component has it; a located output error (exit code 1) when it cannot be created (its nearest
+    /// existing folder is a file or not writable).
     void claimOutput(const std::string& path, const Base& who);
 };
 

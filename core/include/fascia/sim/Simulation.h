@@ -69,15 +69,15 @@ public:
     void run(long steps);
     /// Runs to the time T exactly: steps of dt, the last one shortened to end on T (every component
     /// hears the shorter dt through dtChanged, and dt again after it), so that time() == T after it.
-    /// On a run that has not stepped yet, a dt larger than T - time() is a located error
-    /// (checkEndTime). Nothing happens when T <= time().
+    /// A dt larger than T itself is a located error at every call (checkEndTime); with less than one
+    /// dt left to T it takes one shortened step. Nothing else happens when T <= time().
     void runUntil(double T);
     /// One step toward T: a step of dt, or the last one, shortened to end on T exactly when T is less
     /// than one dt away (a whole step when T is a multiple of dt up to 1e-9 dt).
     void stepToward(double T);
     /// The number of steps runUntil(T) takes from the current time.
     long stepsUntil(double T) const;
-    /// The located error for an end time T shorter than one step (dt > T - time()).
+    /// The located error for an end time T shorter than one step (dt > T), whatever time() is.
     void checkEndTime(double T) const;
     /// Lets every observer record the final state (whatever its `every`), then calls every
     /// component's cleanup (once). After a failed step the observers record nothing more.
@@ -87,7 +87,8 @@ public:
     long stepCount() const { return m_step; }
     double dt() const { return m_dt; }
     void setDt(double dt);
-    /// Folder observers write into (default: the current directory).
+    /// Folder observers write into (default: the current directory). Checked at once (an output error
+    /// at {dir, 0} when it is a file, or cannot be written or created), created by start().
     void setOutputDir(const std::string& dir);
     const std::string& outputDir() const;
 
@@ -112,6 +113,8 @@ public:
     std::vector<TimerRow> timers() const;
 
 private:
+    /// Creates the output folder (start() does, when the scene is known to be valid).
+    void createOutputDir() const;
     /// The smallest stable time step and the force field that sets it (null when none does).
     std::pair<double, const BaseForceField*> limitingForceField() const;
     /// The smallest integrator step (BaseIntegrator::stableTimeStep) over the groups, the integrator

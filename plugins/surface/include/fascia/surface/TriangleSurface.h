@@ -6,7 +6,7 @@
 /// docs/design.md, section 2).
 ///
 /// Every problem with the input is a fascia::core::Error (ErrorKind::Input) located where it is:
-/// "file:line: error: ..." in a text file, "file: error: byte N: ..." in a binary STL file, or at
+/// "file:line: error: ..." in a text file, "file: byte N: error: ..." in a binary STL file, or at
 /// line 0 for the file as a whole.
 #include "fascia/base/Error.h"
 #include "fascia/base/Types.h"
@@ -67,10 +67,8 @@ bool requireClosedSurface(TriangleSurface& surface, const std::string& who);
 /// (divergence theorem); positive when the triangles turn counter-clockwise seen from outside.
 double enclosedVolume(const Positions& points, const Triangles& triangles);
 
-/// Where triangle `tri` of the surface is: its file and line (text), or its file and line 0
-/// (binary STL, whose offset locationPrefix gives).
+/// Where triangle `tri` of the surface is: its file and line (text), or its file and byte offset
+/// (binary STL: "file: byte N: error: ...").
 core::SourceLoc triangleLocation(const TriangleSurface& surface, size_t tri);
-/// "byte N: " for a binary STL triangle, "" otherwise: the start of a message about it.
-std::string locationPrefix(const TriangleSurface& surface, size_t tri);
 
 } // namespace fascia::surface
