@@ -60,6 +60,14 @@ def vtk_legacy_binary():
     return out + b"".join(struct.pack(">i", 1) for _ in TETS) + b"\n"
 
 
+def vtk_points_count_lies():
+    """BINARY, POINTS announces 100 points and the file holds 8: the bound of every count by the bytes
+    left in the file (a located error; without the bound the reader runs past the end of the file)."""
+    out = b"# vtk DataFile Version 3.0\nPOINTS announces 100 points, the file holds 8\nBINARY\n"
+    out += b"DATASET UNSTRUCTURED_GRID\nPOINTS 100 float\n"
+    return out + b"".join(struct.pack(">3f", *p) for p in POINTS) + b"\n"
+
+
 def vtk51(binary):
     head = b"# vtk DataFile Version 5.1\nunit cube, 5 tetrahedra\n" + (b"BINARY" if binary else b"ASCII")
     out = head + b"\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n"
@@ -125,6 +133,7 @@ def vtu(mode, header="UInt64"):
 write("gmsh", "cube_gmsh22_binary.msh", gmsh22_binary())
 write("gmsh", "cube_gmsh41_binary.msh", gmsh41_binary())
 write("legacy_vtk", "cube_binary.vtk", vtk_legacy_binary())
+write("legacy_vtk", "points_count_lies_binary.vtk", vtk_points_count_lies())
 write("legacy_vtk", "cube_v51_ascii.vtk", vtk51(False))
 write("legacy_vtk", "cube_v51_binary.vtk", vtk51(True))
 write("vtu", "cube_ascii.vtu", vtu("ascii"))
