@@ -13,6 +13,7 @@ FASCIA_WITH_VTK ?= ON
 DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev) $(EXTRA_PACKAGES)
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
+FUZZ_TIMEOUT ?= 30
 SANITIZE_DIR ?= build-sanitize
 SANITIZE_CXX ?= g++
 # ccache when there is one (the fuzz build compiles everything again)
@@ -52,7 +53,7 @@ fuzz:
 	cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	      -DFASCIA_FUZZ=ON -DFASCIA_BUILD_TESTS=OFF -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK) $(CCACHE_LAUNCHER)
 	cmake --build $(FUZZ_DIR) -j $(JOBS)
-	tests/fuzz/RunFuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+	FUZZ_TIMEOUT=$(FUZZ_TIMEOUT) tests/fuzz/RunFuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 sanitize: deps
 	tests/sanitizer/Sanitize.sh $(SANITIZE_DIR) $(SANITIZE_CXX) $(JOBS) -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK)
