@@ -1,14 +1,25 @@
 # Two commands set everything up on a fresh Debian 12 machine (see README.md):
 #   make run    installs missing Debian packages, builds Release into build/, runs the default scene
 #   make test   the same set-up, then every test through ctest (non-zero exit on any failure)
+# Not part of `make test` (docs/robustness.md):
+#   make fuzz      builds the libFuzzer targets with clang into build-fuzz/ and runs each for
+#                  FUZZ_SECONDS; non-zero exit on a finding
+#   make sanitize  builds everything with ASan + UBSan into build-sanitize/ and runs the whole ctest
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SCENE ?= scenes/heml/abdomen.xml
 # FASCIA_WITH_VTK=OFF builds without VTK (no .vtk/.vtu reader, no VTKExporter) and does not install it
 FASCIA_WITH_VTK ?= ON
-DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev)
+DEBIAN_PACKAGES := build-essential cmake libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev) $(EXTRA_PACKAGES)
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TIMEOUT ?= 30
+SANITIZE_DIR ?= build-sanitize
+SANITIZE_CXX ?= g++
+# ccache when there is one (the fuzz build compiles everything again)
+CCACHE_LAUNCHER := $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
-.PHONY: deps configure build run test bench install clean
+.PHONY: deps configure build run test bench install clean fuzz sanitize
 
 deps:
 	@missing=""; for p in $(DEBIAN_PACKAGES); do \
@@ -36,6 +47,16 @@ bench: build
 	$(BUILD_DIR)/bin/fascia-bench --suite heml
 	$(BUILD_DIR)/bin/fascia-bench --suite scaling --repeat 7
 	$(BUILD_DIR)/bin/fascia-bench --suite tled --repeat 9
+
+fuzz:
+	$(MAKE) deps EXTRA_PACKAGES=clang
+	cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	      -DFASCIA_FUZZ=ON -DFASCIA_BUILD_TESTS=OFF -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK) $(CCACHE_LAUNCHER)
+	cmake --build $(FUZZ_DIR) -j $(JOBS)
+	FUZZ_TIMEOUT=$(FUZZ_TIMEOUT) tests/fuzz/RunFuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+sanitize: deps
+	tests/sanitizer/Sanitize.sh $(SANITIZE_DIR) $(SANITIZE_CXX) $(JOBS) -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK)
 
 clean:
 	rm -rf $(BUILD_DIR)

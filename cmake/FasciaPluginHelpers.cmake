@@ -27,8 +27,11 @@ function(fascia_add_plugin)
   endforeach()
   target_include_directories(${P_NAME} INTERFACE $<INSTALL_INTERFACE:include>)
   set_target_properties(${P_NAME} PROPERTIES PREFIX "lib")
-  # an unresolved symbol is a link error here, not a load error at run time
-  target_link_options(${P_NAME} PRIVATE -Wl,--no-undefined)
+  # an unresolved symbol is a link error here, not a load error at run time (not in sanitizer
+  # builds: clang leaves the sanitizer runtime out of shared libraries, the executable brings it)
+  if(NOT FASCIA_FUZZ AND NOT FASCIA_SANITIZE)
+    target_link_options(${P_NAME} PRIVATE -Wl,--no-undefined)
+  endif()
   if(P_OUTPUT_DIR)
     set_target_properties(${P_NAME} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${P_OUTPUT_DIR})
   elseif(in_tree)
