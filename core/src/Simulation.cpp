@@ -275,6 +275,7 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
     if (!(dt > 0) || !std::isfinite(dt))
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
     m_dt = dt;
+    m_snapshotStep = -1;  // a snapshot replays steps of one dt: the next step takes a new one
     m_timeAtDtChange = m_time;
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
@@ -316,6 +317,9 @@ void Simulation::advance(double end) {
     requireDt();
     start();
     SceneContext& ctx = m_root->context();
+    // the divergence check's snapshot (the last good state is rebuilt from it: saveLastGoodState)
+    if (!m_replaying && m_snapshotEvery > 0 && (m_snapshotStep < 0 || m_step - m_snapshotStep >= m_snapshotEvery))
+        takeSnapshot();
     try {
         for (Component* c : m_all) c->beginStep(m_time, m_dt);
         for (auto& g : m_groups) {
@@ -324,10 +328,14 @@ void Simulation::advance(double end) {
                 ScopedTimer t(g.integrator->timer());
                 g.integrator->step(g, m_time, m_dt);
             }
-            g.checkFinite(m_time + m_dt);
+            checkGroup(g);
         }
-    } catch (...) {
+    } catch (const Error& e) {
         m_failed = true;  // finish() then records no final state
+        if (!m_replaying && e.kind() == ErrorKind::Simulation) m_failedStep = m_step + 1;
+        throw;
+    } catch (...) {
+        m_failed = true;
         throw;
     }
     ++m_step;
@@ -339,6 +347,7 @@ void Simulation::advance(double end) {
     }
     ctx.time = m_time;
     ctx.step = m_step;
+    if (m_replaying) return;
     for (auto* o : m_observers) {
         ScopedTimer t(o->timer());
         o->observe(m_time, m_step);

@@ -56,6 +56,10 @@ public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
     std::string runSummary() const override;
     bool runFailed() const override;
+    /// Per state what carries over between load steps (the fictitious mass shape and its scale, the
+    /// safety factor, the damping of the last iteration), and the reports of the load steps so far.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     /// One report per load step and state, in order.
     const std::vector<LoadStepReport>& reports() const { return m_reports; }
