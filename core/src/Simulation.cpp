@@ -1,5 +1,6 @@
 #include "fascia/sim/Simulation.h"
 #include "fascia/scene/SceneLoader.h"
+#include "fascia/sim/Tool.h"
 
 #include <unistd.h>
 
@@ -165,6 +166,7 @@ void Simulation::init() {
         auto* k = dynamic_cast<BaseConstraint*>(c);
         if (!ff && !m && !k) continue;
         auto* s = c->node()->findInContext<BaseMechanicalState>();
+        if (auto* tool = dynamic_cast<BaseTool*>(c); tool && tool->body()) s = tool->body();  // a tool names its body
         auto it = std::find_if(m_groups.begin(), m_groups.end(), [&](auto& g) { return g.state == s; });
         if (it == m_groups.end()) {
             c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
@@ -419,6 +421,16 @@ BaseMechanicalState& Simulation::state(const std::string& nameOrPath) {
     auto* s = dynamic_cast<BaseMechanicalState*>(find(nameOrPath));
     if (!s) throwInputError({}, "no mechanical state '" + nameOrPath + "' in the scene");
     return *s;
+}
+
+BaseTool& Simulation::tool(const std::string& nameOrPath) {
+    Component* c = find(nameOrPath);
+    auto* t = dynamic_cast<BaseTool*>(c);
+    if (!t)
+        throwInputError({}, c ? "the component '" + nameOrPath + "' is a " + c->className() + ", not a tool"
+                              : "no tool '" + nameOrPath + "' in the scene",
+                        {"a tool is a PlaneTool, SphereTool, CapsuleTool or SurfaceTool (plugin contact)"});
+    return *t;
 }
 
 Component* Simulation::find(const std::string& nameOrPath) const {

@@ -153,10 +153,17 @@ inline void streamCopy(double* dst, const double* src, size_t n) {
     for (size_t i = 0; i < n; ++i) dst[i] = src[i];
 #endif
 }
-/// Prefetches [p, p + bytes) into the cache (a hint).
+/// Prefetches [p, p + bytes) into the cache (a hint). On x86-64 with GCC or clang, as volatile
+/// asm: GCC 12 deletes a loop whose only statements are __builtin_prefetch calls as a loop without
+/// side effects once it is inlined into a large caller, and so dropped every prefetch of TLED's
+/// element loop (docs/performance.md, lesson 11).
 inline void prefetch(const void* p, size_t bytes) {
     const char* c = static_cast<const char*>(p);
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    for (size_t i = 0; i < bytes; i += 64) __asm__ volatile("prefetcht0 %0" : : "m"(c[i]));
+#else
     for (size_t i = 0; i < bytes; i += 64) __builtin_prefetch(c + i, 0, 3);
+#endif
 }
 inline void streamFence() {
 #if defined(__AVX__)

@@ -24,6 +24,7 @@ namespace fascia::core {
 
 class StateWriter;
 class StateReader;
+class BaseTool;
 
 struct TimerRow {
     std::string path, type;
@@ -86,6 +87,9 @@ public:
     Node& root() { return *m_root; }
     /// A mechanical state by name or path ("organ", "/root/liver/mo"); throws when there is none.
     BaseMechanicalState& state(const std::string& nameOrPath);
+    /// A rigid tool (fascia/sim/Tool.h) by name or path ("probe", "/root/probe"); throws an input
+    /// error when there is none or the component of that name is no tool.
+    BaseTool& tool(const std::string& nameOrPath);
     /// Any component by name or path; null when there is none.
     Component* find(const std::string& nameOrPath) const;
     const std::vector<MechanicalGroup>& groups() const { return m_groups; }
