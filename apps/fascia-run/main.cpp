@@ -66,9 +66,9 @@ exit codes:
   2  invalid scene or input (the located error, file:line, on stderr), or a --restart
      checkpoint that is missing, corrupt or of another scene (file: error: ...)
   3  the simulation failed while running (NaN, or a kinetic energy growing without bound: the
-     step, time, component and worst element named, a stable dt suggested; the state at the
-     start of the failing step is written as a checkpoint, to --checkpoint FILE or else
-     OUTPUT/diverged.ckpt), or a static solver (DynamicRelaxation) did not converge in a load
+     step, time, component and worst element named, a stable dt suggested; the last good state,
+     before the failing step and any growth leading to it, is written as a checkpoint, to
+     --checkpoint FILE or else OUTPUT/diverged.ckpt), or a static solver (DynamicRelaxation) did not converge in a load
      step (warned, files written)
   1  anything else (bad command line, a file that cannot be written, internal error)
   130  interrupted (Ctrl-C or SIGTERM): the run stops after the current step, files complete

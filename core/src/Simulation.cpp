@@ -278,6 +278,7 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
     m_dt = dt;
     m_snapshotStep = -1;  // a snapshot replays steps of one dt: the next step takes a new one
+    m_snapshots.clear();
     m_timeAtDtChange = m_time;
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
@@ -334,7 +335,14 @@ void Simulation::advance(double end) {
         }
     } catch (const Error& e) {
         m_failed = true;  // finish() then records no final state
-        if (!m_replaying && e.kind() == ErrorKind::Simulation) m_failedStep = m_step + 1;
+        if (!m_replaying && e.kind() == ErrorKind::Simulation) {
+            // the last good state: before the run of growing steps that led here (checkStep's rule)
+            int back = 0;
+            for (const auto& g : m_groups)
+                back = std::max(back, std::min(g.kineticGrowth, MechanicalGroup::kGrowthSteps - 1));
+            m_failedStep = m_step + 1;
+            m_lastGoodStep = std::max(0L, m_step - long(back));
+        }
         throw;
     } catch (...) {
         m_failed = true;

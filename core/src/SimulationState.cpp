@@ -253,7 +253,8 @@ void Simulation::restore(const std::string& path) {
     const auto payload = at<std::uint64_t>(bytes, 24);
     if (payload > size || size - kHeaderBytes - kChecksumBytes < payload || size < kHeaderBytes + kChecksumBytes)
         failFile(path, "truncated checkpoint: " + std::to_string(size) + " bytes, its header announces " +
-                           (payload > size ? "more" : std::to_string(kHeaderBytes + payload + kChecksumBytes)));
+                           (payload > (std::uint64_t(1) << 60) ? std::string("more than 2^60")
+                                                              : std::to_string(kHeaderBytes + payload + kChecksumBytes)));
     const size_t end = kHeaderBytes + size_t(payload);
     if (size != end + kChecksumBytes)
         failFile(path, "the checkpoint has " + std::to_string(size - end - kChecksumBytes) + " bytes after its end");
@@ -282,22 +283,32 @@ void Simulation::restore(const std::string& path) {
 void Simulation::setSnapshotEvery(long steps) {
     m_snapshotEvery = steps < 0 ? 0 : steps;
     m_snapshotStep = -1;
-    if (!m_snapshotEvery) m_snapshot.clear();
+    m_snapshots.clear();
 }
 
 void Simulation::takeSnapshot() {
     StateWriter w;
-    w.bytes().swap(m_snapshot);  // reuses its memory
+    if (m_snapshots.size() >= kSnapshotsKept) {
+        w.bytes().swap(m_snapshots.front().second);  // reuses the oldest one's memory
+        m_snapshots.pop_front();
+    }
     w.clear();
     writeState(w, false);
-    m_snapshot.swap(w.bytes());
+    m_snapshots.emplace_back(m_step, std::string());
+    m_snapshots.back().second.swap(w.bytes());
     m_snapshotStep = m_step;
 }
 
 long Simulation::saveLastGoodState(const std::string& path) {
-    if (m_failedStep < 0 || m_snapshotStep < 0 || m_snapshot.empty()) return -1;
-    const long target = m_failedStep - 1;
-    StateReader r(m_snapshot, 0, m_snapshot.size(), "<snapshot>");
+    if (m_failedStep < 0 || m_snapshots.empty()) return -1;
+    // the newest snapshot at or before the last good step (or the oldest kept)
+    const long wanted = m_lastGoodStep;
+    size_t k = 0;
+    for (size_t i = 0; i < m_snapshots.size(); ++i)
+        if (m_snapshots[i].first <= wanted) k = i;
+    const long from = m_snapshots[k].first;
+    const long target = std::max(wanted, from);
+    StateReader r(m_snapshots[k].second, 0, m_snapshots[k].second.size(), "<snapshot>");
     readState(r, false);
     // the steps from the snapshot to the start of the failing step again, observers muted
     m_replaying = true;
@@ -308,7 +319,7 @@ long Simulation::saveLastGoodState(const std::string& path) {
         m_replaying = false;
         m_failed = true;
         throw Error(ErrorKind::Internal, {},
-                    "the replay from the snapshot of step " + std::to_string(m_snapshotStep) + " failed at step " +
+                    "the replay from the snapshot of step " + std::to_string(from) + " failed at step " +
                         std::to_string(m_step + 1) + ", before the step that failed (" + std::to_string(m_failedStep) +
                         "): a component does not save all its state (saveState): " + e.message());
     }

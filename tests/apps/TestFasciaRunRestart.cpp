@@ -33,7 +33,7 @@ std::string cube(const std::string& forceField, const std::string& integrator, b
            "  <FixedConstraint name=\"base\" group=\"zmin\"/>\n"
            "  <PrescribedDisplacement name=\"push\" group=\"zmax\" displacement=\"0 0 -0.01\" curve=\"ramp " +
            std::string(statics ? "2" : "0.01") + "\"/>\n"
-           "  <Monitor name=\"mon\" indices=\"5 40\" velocities=\"true\" kineticEnergy=\"true\" residual=\"true\" every=\"5\"/>\n";
+           "  <Monitor name=\"mon\" indices=\"5 20\" velocities=\"true\" kineticEnergy=\"true\" residual=\"true\" every=\"5\"/>\n";
 #if FASCIA_HAVE_VTK
     xml += "  <VTKExporter name=\"vtk\" every=\"10\"/>\n";
 #endif
@@ -174,7 +174,7 @@ TEST_CASE("fascia-run refuses bad checkpoint options", "[fascia-run]") {
     CHECK(w.filesIn("out").empty());
 }
 
-TEST_CASE("A diverging fascia-run exits 3 and leaves the state at the start of the failing step", "[fascia-run]") {
+TEST_CASE("A diverging fascia-run exits 3 and leaves the state before the growth as a checkpoint", "[fascia-run]") {
     const bool named = GENERATE(false, true);  // to --checkpoint FILE, or to OUTPUT/diverged.ckpt
     CAPTURE(named);
     Workspace w;
@@ -196,15 +196,16 @@ TEST_CASE("A diverging fascia-run exits 3 and leaves the state at the start of t
                           Contains("worst element: ") && Contains("of HEMLForceField '/root/ff' (J = ") &&
                           Contains("a stable dt: "));
     const std::string file = named ? "last.ckpt" : "out/diverged.ckpt";
-    CHECK_THAT(r.err, Contains("fascia-run: the last good state (step " + std::to_string(failed - 1) + ", t = ") &&
+    const long good = std::max(0L, failed - 4);  // the start of the 4 steps of growth
+    CHECK_THAT(r.err, Contains("fascia-run: the last good state (step " + std::to_string(good) + ", t = ") &&
                           Contains("is in '" + (named ? file : "out/diverged.ckpt") + "'"));
     REQUIRE(fs::exists(w.dir() / file));
     // the checkpoint is the state of a run straight to the step before
     auto straight = fascia::core::Simulation::fromString(xml);
-    straight->run(failed - 1);
+    straight->run(good);
     auto restored = fascia::core::Simulation::fromString(xml);
     restored->restore((w.dir() / file).string());
-    CHECK(restored->stepCount() == failed - 1);
+    CHECK(restored->stepCount() == good);
     CHECK(sameBits(restored->state("state").x(), straight->state("state").x()));
     CHECK(sameBits(restored->state("state").v(), straight->state("state").v()));
     // and a restart from it with a stable dt goes on

@@ -14,6 +14,7 @@
 #include "fascia/sim/Mechanics.h"
 
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <string>
@@ -137,9 +138,13 @@ public:
     /// snapshot before every step, no replay).
     void setSnapshotEvery(long steps);
     static constexpr long kSnapshotEvery = 100;
-    /// After a failed step: writes the state at its start as a checkpoint to `path` (see save) and
-    /// returns its step number; the simulation is then at that state. -1 when there is no failed
-    /// step or no snapshot (setSnapshotEvery(0)).
+    static constexpr size_t kSnapshotsKept = 5;
+    /// After a failed step: writes the last good state as a checkpoint to `path` (see save) and
+    /// returns its step number; the simulation is then at that state. The last good state is the
+    /// start of the failing step, or, when the kinetic energy was growing past the growth rule's
+    /// factor at the steps before it, the start of the first of them (a state the unstable mode has
+    /// not yet amplified: MechanicalGroup::checkStep); no earlier than the oldest snapshot kept (the
+    /// last kSnapshotsKept). -1 when there is no failed step or no snapshot (setSnapshotEvery(0)).
     long saveLastGoodState(const std::string& path);
     /// The step that failed (1-based), -1 when none.
     long failedStep() const { return m_failedStep; }
@@ -182,8 +187,9 @@ private:
     long m_stepAtDtChange = 0;
     bool m_initialised = false, m_started = false, m_finished = false, m_failed = false;
     bool m_replaying = false;           ///< saveLastGoodState's replay: observers muted
-    long m_snapshotEvery = kSnapshotEvery, m_snapshotStep = -1, m_failedStep = -1;
-    std::string m_snapshot;             ///< the records of writeState(.., false) at m_snapshotStep
+    long m_snapshotEvery = kSnapshotEvery, m_snapshotStep = -1, m_failedStep = -1, m_lastGoodStep = -1;
+    /// the last kSnapshotsKept snapshots (step, records of writeState(.., false)), oldest first
+    std::deque<std::pair<long, std::string>> m_snapshots;
     mutable std::uint64_t m_sceneHash = 0;
     mutable std::string m_sceneLines;   ///< "path hash" per node and component, for the mismatch message
     mutable bool m_haveSceneHash = false;
