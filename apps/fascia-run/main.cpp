@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -26,6 +27,7 @@ const char* kHelp = R"(fascia-run: run a Fascia scene headless
 
 usage:
   fascia-run SCENE.xml [--steps N | --time T] [--dt DT] [--threads N] [--output DIR] [--quiet] [--timers]
+             [--checkpoint FILE [--checkpoint-every N]] [--restart FILE]
   fascia-run --list
   fascia-run --describe COMPONENT
   fascia-run --help
@@ -41,6 +43,16 @@ options:
   --quiet          no progress bar
   --timers         time each component and print the table at the end (inclusive: an
                    integrator's time contains the force fields and constraints it calls)
+  --checkpoint FILE  write the whole state to FILE at the end of the run (also when
+                   interrupted), and the last good state there when the run diverges
+                   (written atomically: FILE.tmp, then renamed over FILE)
+  --checkpoint-every N  also every N steps (of the step count, so that a restarted run keeps
+                   the rhythm); needs --checkpoint
+  --restart FILE   resume from a checkpoint of this scene (a changed parameter or mesh file
+                   is an error): --steps N runs N more steps, --time T and endTime run up to
+                   T; a dt other than the saved one (--dt, the scene's) applies from the
+                   checkpoint on. Give the --output folder of the run that wrote it: exporters
+                   continue its series (the .pvd lists the earlier files, CSVs are appended to)
   --list           print every registered component with its plugin and a description
   --describe NAME  print the parameters of a component (type, default, unit, range, help)
 
@@ -52,9 +64,13 @@ output: a progress bar on a terminal (none when piped or with --quiet), then one
 
 exit codes:
   0  success
-  2  invalid scene or input (the located error, file:line, on stderr)
-  3  the simulation failed while running (NaN or instability: step and component named), or
-     a static solver (DynamicRelaxation) did not converge in a load step (warned, files written)
+  2  invalid scene or input (the located error, file:line, on stderr), or a --restart
+     checkpoint that is missing, corrupt or of another scene (file: error: ...)
+  3  the simulation failed while running (NaN, or a kinetic energy growing without bound: the
+     step, time, component and worst element named, a stable dt suggested; the last good state,
+     before the failing step and any growth leading to it, is written as a checkpoint, to
+     --checkpoint FILE or else OUTPUT/diverged.ckpt), or a static solver (DynamicRelaxation) did not converge in a load
+     step (warned, files written)
   1  anything else (bad command line, a file that cannot be written, internal error)
   130  interrupted (Ctrl-C or SIGTERM): the run stops after the current step, files complete
 )";
@@ -143,11 +159,33 @@ void progress(long done, long total, double wall) {
     std::fflush(stderr);
 }
 
+
+/// The folder of a checkpoint file must exist and be writable before the run starts.
+void checkCheckpointFolder(const std::string& file) {
+    const std::string::size_type slash = file.rfind('/');
+    const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : file.substr(0, slash);
+    if (access(dir.c_str(), W_OK | X_OK) != 0)
+        throwOutputError({}, "--checkpoint '" + file + "': cannot write into the folder '" + dir + "': " + std::strerror(errno));
+}
+
+/// After a failed step: the state at its start, as a checkpoint; the line that says where it is.
+void writeLastGood(Simulation& sim, const std::string& checkpoint) {
+    const std::string path = !checkpoint.empty() ? checkpoint : sim.outputDir() + "/diverged.ckpt";
+    try {
+        const long step = sim.saveLastGoodState(path);
+        if (step < 0) return;
+        std::cerr << "fascia-run: the last good state (step " << step << ", t = " << sim.time() << " s) is in '" << path
+                  << "': restart from it with --restart " << path << " (and a smaller dt)\n";
+    } catch (const Error& e) {
+        std::cerr << "fascia-run: the last good state could not be written: " << e.what() << "\n";
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    std::string scene, output, describeName;
-    long steps = -1;
+    std::string scene, output, describeName, checkpoint, restart;
+    long steps = -1, checkpointEvery = 0;
     double endTime = -1, dt = 0;
     int threads = 0;
     bool quiet = false, timers = false, list = false;
@@ -173,6 +211,16 @@ int main(int argc, char** argv) {
             quiet = true;
         } else if (a == "--timers") {
             timers = true;
+        } else if (a == "--checkpoint") {
+            const char* v = next();
+            if (!v || !*v) usage("--checkpoint needs a file");
+            checkpoint = v;
+        } else if (a == "--checkpoint-every") {
+            checkpointEvery = parseCount(a, next(), 1, kMaxSteps);
+        } else if (a == "--restart") {
+            const char* v = next();
+            if (!v || !*v) usage("--restart needs a checkpoint file");
+            restart = v;
         } else if (a == "--list") {
             list = true;
         } else if (a == "--describe") {
@@ -188,6 +236,8 @@ int main(int argc, char** argv) {
         }
     }
     if (steps >= 0 && endTime > 0) usage("give --steps or --time, not both");
+    if (checkpointEvery > 0 && checkpoint.empty()) usage("--checkpoint-every needs --checkpoint FILE");
+    std::unique_ptr<Simulation> sim;
     try {
         if (list) return listComponents();
         if (!describeName.empty()) return describe(describeName);
@@ -198,14 +248,20 @@ int main(int argc, char** argv) {
         LoadOptions opts;
         opts.outputDir = output;
         opts.dt = dt;
-        auto sim = Simulation::fromFile(scene, opts);
+        if (!checkpoint.empty()) checkCheckpointFolder(checkpoint);
+        sim = Simulation::fromFile(scene, opts);
+        if (!restart.empty()) sim->restore(restart);
         if (!(sim->dt() > 0))
             throwInputError({scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
         // a run to an end time ends on it exactly: its last step is shortened (Simulation::stepToward)
         const double T = steps >= 0 ? 0.0 : endTime > 0 ? endTime : sim->root().endTime.get();
         if (steps < 0) {
-            if (T > 0) sim->checkEndTime(T);
-            const double n = T > 0 ? std::ceil(T / sim->dt() - 1e-9) : 100.0;
+            if (!restart.empty() && T > 0 && !(sim->stepsUntil(T) > 0))
+                throwInputError({restart, 0}, "the checkpoint is at t = " + std::to_string(sim->time()) +
+                                                  " s, at or past the end time " + std::to_string(T) + " s: nothing to run",
+                                {"give a later --time, or --steps N for N more steps"});
+            if (T > 0 && restart.empty()) sim->checkEndTime(T);  // (a restarted run may have less than dt left)
+            const double n = T > 0 ? std::ceil((T - sim->time()) / sim->dt() - 1e-9) : 100.0;
             if (!(n <= double(kMaxSteps))) {
                 std::ostringstream msg;
                 msg << "time " << T << " s at dt = " << sim->dt() << " s is more than 1e12 steps";
@@ -219,10 +275,14 @@ int main(int argc, char** argv) {
         const bool bar = !quiet && isatty(STDERR_FILENO);
         const auto start = std::chrono::steady_clock::now();
         auto lastDraw = start;
-        long done = 0;
+        long done = 0, saved = -1;
         for (; done < steps && !g_interrupted; ++done) {
             if (T > 0) sim->stepToward(T);
             else sim->step();
+            if (checkpointEvery > 0 && sim->stepCount() % checkpointEvery == 0) {
+                sim->save(checkpoint);
+                saved = sim->stepCount();
+            }
             if (bar) {
                 auto now = std::chrono::steady_clock::now();
                 if (now - lastDraw > std::chrono::milliseconds(100) || done + 1 == steps) {
@@ -233,6 +293,9 @@ int main(int argc, char** argv) {
         }
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (bar) std::fputc('\n', stderr);
+        // the end checkpoint holds the state before finish() records the final state, as a run that
+        // went on would have it
+        if (!checkpoint.empty() && saved != sim->stepCount()) sim->save(checkpoint);
         sim->finish();
         const double simulated = sim->time();
         std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", done,
@@ -265,7 +328,9 @@ int main(int argc, char** argv) {
         std::cerr << std::string(e.what()) + "\n";
         switch (e.kind()) {
         case ErrorKind::Input: return 2;
-        case ErrorKind::Simulation: return 3;
+        case ErrorKind::Simulation:
+            if (sim && sim->failedStep() > 0) writeLastGood(*sim, checkpoint);
+            return 3;
         default: return 1;
         }
     } catch (const std::exception& e) {

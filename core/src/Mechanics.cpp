@@ -1,4 +1,6 @@
 #include "fascia/sim/Mechanics.h"
+#include "fascia/base/Error.h"
+#include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <algorithm>
@@ -14,6 +16,24 @@ void BaseMechanicalState::resize(size_t n) {
     m_f.assign(n, Vec3::Zero());
     m_reaction.assign(n, Vec3::Zero());
     m_external.assign(n, Vec3::Zero());
+}
+
+void BaseMechanicalState::saveState(StateWriter& out) const {
+    out.put("x", m_x);
+    out.put("v", m_v);
+    out.put("f", m_f);
+    out.put("x0", m_x0);
+    out.put("reaction", m_reaction);
+    out.put("externalForce", m_external);
+}
+
+void BaseMechanicalState::restoreState(StateReader& in) {
+    in.getInto("x", m_x);
+    in.getInto("v", m_v);
+    in.getInto("f", m_f);
+    in.getInto("x0", m_x0);
+    in.getInto("reaction", m_reaction);
+    in.getInto("externalForce", m_external);
 }
 
 void MechanicalGroup::computeForces(double t) {
@@ -115,6 +135,45 @@ std::string vecText(const Vec3& v) {
     return os.str();
 }
 } // namespace
+
+void MechanicalGroup::checkStep(double t) {
+    // one pass over x, v and the masses: per chunk the finite probe of x and v and the kinetic energy
+    const long n = static_cast<long>(std::min(state->x().size(), state->v().size()));
+    const double* xp = flat(state->x());
+    const double* vp = flat(state->v());
+    const double* mp = mass.size() >= size_t(n) ? mass.data() : nullptr;
+    const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
+    chunkSums.assign(2 * size_t(chunks), 0.0);
+    double* sums = chunkSums.data();
+    forEachNodeRange(n, [&](long lo, long hi) {
+        const long c = lo / kNodeChunk;
+        sums[2 * c] = finiteProbe(xp + 3 * lo, vp + 3 * lo, 3 * (hi - lo));
+        double e[4] = {0, 0, 0, 0};
+        if (mp)
+            for (long i = lo; i < hi; ++i)
+                e[i & 3] += mp[i] * (vp[3 * i] * vp[3 * i] + vp[3 * i + 1] * vp[3 * i + 1] + vp[3 * i + 2] * vp[3 * i + 2]);
+        sums[2 * c + 1] = 0.5 * ((e[0] + e[1]) + (e[2] + e[3]));
+    });
+    double probe = 0, ke = 0;
+    for (long c = 0; c < chunks; ++c) probe += sums[2 * c], ke += sums[2 * c + 1];  // in chunk order
+    if (!std::isfinite(probe) || state->x().size() != state->v().size()) checkFinite(t);
+    // the growth rule (Mechanics.h): kGrowthSteps consecutive steps above kGrowthFactor times every earlier one
+    const double before = kineticMax;
+    kineticGrowth = (ke > 0 && ke > kGrowthFactor * kineticMax) ? kineticGrowth + 1 : 0;
+    kinetic = ke;
+    kineticMax = std::max(kineticMax, ke);
+    if (kineticGrowth >= kGrowthSteps) {
+        std::ostringstream os;
+        os.precision(3);
+        os << "[" << state->path() << "] step " << stepIndex << ": the kinetic energy grew more than " << kGrowthFactor
+           << " times its largest earlier value at each of the last " << kGrowthSteps << " steps, to " << ke << " J ("
+           << (before > 0 ? ke / before : INFINITY) << " times the " << before << " J before this step) after "
+           << integrator->className() << " '" << integrator->name()
+           << "': the simulation diverges (time step above the critical one, or an exploding force); "
+              "try a smaller dt or dt=\"auto\"";
+        throwSimulationError(os.str());
+    }
+}
 
 void MechanicalGroup::checkFinite(double t) {
     // fast test: one pass over x and v (0 * a non-finite value is NaN, 0 * a finite one is 0); the

@@ -278,6 +278,8 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
     if (!(dt > 0) || !std::isfinite(dt))
         throwInputError({}, "time step " + std::to_string(dt) + " s is not a positive number");
     m_dt = dt;
+    m_snapshotStep = -1;  // a snapshot replays steps of one dt: the next step takes a new one
+    m_snapshots.clear();
     m_timeAtDtChange = m_time;
     m_stepAtDtChange = m_step;
     m_root->context().dt = dt;
@@ -347,6 +349,9 @@ void Simulation::advance(double end) {
     requireDt();
     start();
     SceneContext& ctx = m_root->context();
+    // the divergence check's snapshot (the last good state is rebuilt from it: saveLastGoodState)
+    if (!m_replaying && m_snapshotEvery > 0 && (m_snapshotStep < 0 || m_step - m_snapshotStep >= m_snapshotEvery))
+        takeSnapshot();
     try {
         for (Component* c : m_all) c->beginStep(m_time, m_dt);
         for (auto& g : m_groups) {
@@ -355,10 +360,21 @@ void Simulation::advance(double end) {
                 ScopedTimer t(g.integrator->timer());
                 g.integrator->step(g, m_time, m_dt);
             }
-            g.checkFinite(m_time + m_dt);
+            checkGroup(g);
         }
-    } catch (...) {
+    } catch (const Error& e) {
         m_failed = true;  // finish() then records no final state
+        if (!m_replaying && e.kind() == ErrorKind::Simulation) {
+            // the last good state: before the run of growing steps that led here (checkStep's rule)
+            int back = 0;
+            for (const auto& g : m_groups)
+                back = std::max(back, std::min(g.kineticGrowth, MechanicalGroup::kGrowthSteps - 1));
+            m_failedStep = m_step + 1;
+            m_lastGoodStep = std::max(0L, m_step - long(back));
+        }
+        throw;
+    } catch (...) {
+        m_failed = true;
         throw;
     }
     ++m_step;
@@ -370,6 +386,7 @@ void Simulation::advance(double end) {
     }
     ctx.time = m_time;
     ctx.step = m_step;
+    if (m_replaying) return;
     for (auto* o : m_observers) {
         ScopedTimer t(o->timer());
         o->observe(m_time, m_step);

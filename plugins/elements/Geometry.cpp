@@ -118,6 +118,41 @@ TetRest tetRest(const core::Component& owner, const Positions& X, const Tetrahed
     return r;
 }
 
+namespace {
+/// det(dx/dxi) at the centre of a hexahedron: dN_a/dxi_i = xi_a,i / 8 there.
+double hexCentreJacobian(const Positions& p, const std::array<int, 8>& h) {
+    Mat3 J = Mat3::Zero();
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) J.col(i) += (kHexXi[a][i] / 8.0) * p[size_t(h[size_t(a)])];
+    return J.determinant();
+}
+} // namespace
+
+bool worstElement(const Tetrahedra& tets, const Hexahedra& hexes, const Positions& X, const Positions& x,
+                  core::ElementReport& out) {
+    const size_t n = std::min(X.size(), x.size());
+    bool found = false;
+    auto consider = [&](long index, double J, const Vec3& centroid) {
+        core::ElementReport r{index, J, centroid};
+        if (!found || core::worseElement(r, out)) out = r, found = true;
+    };
+    for (size_t e = 0; e < tets.size(); ++e) {
+        const auto& t = tets[e];
+        if (size_t(*std::max_element(t.begin(), t.end())) >= n || *std::min_element(t.begin(), t.end()) < 0) return false;
+        const double V0 = tetSignedVolume6(X[t[0]], X[t[1]], X[t[2]], X[t[3]]);
+        const double V = tetSignedVolume6(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+        consider(long(e), V / V0, (X[t[0]] + X[t[1]] + X[t[2]] + X[t[3]]) / 4.0);
+    }
+    for (size_t e = 0; e < hexes.size(); ++e) {
+        const auto& h = hexes[e];
+        if (size_t(*std::max_element(h.begin(), h.end())) >= n || *std::min_element(h.begin(), h.end()) < 0) return false;
+        Vec3 c = Vec3::Zero();
+        for (int a : h) c += X[size_t(a)] / 8.0;
+        consider(long(tets.size() + e), hexCentreJacobian(x, h) / hexCentreJacobian(X, h), c);
+    }
+    return found;
+}
+
 double densityFor(const core::BaseMass& mass, double restVolume) {
     double rho = mass.density();
     if (std::isfinite(rho)) return rho;

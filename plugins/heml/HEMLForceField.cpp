@@ -1,6 +1,7 @@
 #include "fascia/heml/HEMLForceField.h"
 #include "HEMLKernel.h"
 
+#include "fascia/base/StateIO.h"
 #include "fascia/elements/NodeOrder.h"
 #include "fascia/elements/Errors.h"
 #include "fascia/elements/FibreField.h"
@@ -336,6 +337,35 @@ void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
 
 // ---------------------------------------------------------------------------------------------
 // forces
+
+bool HEMLForceField::worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const {
+    return elements::worstElement(m_tets, {}, m_rest, state.x(), out);
+}
+
+void HEMLForceField::saveState(core::StateWriter& out) const {
+    if (!m_data || m_data->nTerms == 0) return;
+    const HEMLData& d = *m_data;
+    out.put("arrays", long(d.Yprev.size()));
+    for (size_t k = 0; k < d.Yprev.size(); ++k) {
+        out.put("Yprev", d.Yprev[k].data(), d.Yprev[k].size());
+        out.put("Ycur", d.Ycur[k].data(), d.Ycur[k].size());
+    }
+    d.clock.save(out);
+}
+
+void HEMLForceField::restoreState(core::StateReader& in) {
+    if (!m_data || m_data->nTerms == 0) return;
+    HEMLData& d = *m_data;
+    const long n = in.getLong("arrays");
+    if (n != long(d.Yprev.size()))
+        in.fail("[" + path() + "] the checkpoint has " + std::to_string(n) + " viscous state arrays, this force field " +
+                std::to_string(d.Yprev.size()));
+    for (size_t k = 0; k < d.Yprev.size(); ++k) {
+        in.getInto("Yprev", d.Yprev[k].data(), d.Yprev[k].size());
+        in.getInto("Ycur", d.Ycur[k].data(), d.Ycur[k].size());
+    }
+    d.clock.restore(in);
+}
 
 void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
     checkState(state);

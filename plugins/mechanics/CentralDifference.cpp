@@ -2,6 +2,29 @@
 
 namespace fascia::mechanics {
 
+void CentralDifference::saveState(core::StateWriter& out) const {
+    out.put("states", long(m_history.size()));
+    for (const auto& [state, h] : m_history) {
+        out.put("state", state->path());
+        out.put("prev", h.prev);
+        out.put("dt", h.dt);
+        out.put("steps", h.steps);
+    }
+}
+
+void CentralDifference::restoreState(core::StateReader& in) {
+    m_history.clear();
+    const long n = in.getLong("states");
+    for (long k = 0; k < n; ++k) {
+        auto& s = savedState(*this, in, in.getText("state"));
+        History& h = m_history[&s];
+        h.prev.resize(s.size());
+        in.getInto("prev", h.prev);
+        h.dt = in.getDouble("dt");
+        h.steps = in.getLong("steps");
+    }
+}
+
 void CentralDifference::step(core::MechanicalGroup& g, double t, double dt) {
     g.computeForces(t);
     Positions& x = g.state->x();

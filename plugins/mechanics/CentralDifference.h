@@ -17,6 +17,9 @@ namespace fascia::mechanics {
 class CentralDifference : public DampedIntegrator {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
+    /// Per state: x(n-1), the dt it is for and the steps taken since the (re)start.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
 private:
     struct History {

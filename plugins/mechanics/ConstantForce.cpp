@@ -1,4 +1,5 @@
 #include "ConstantForce.h"
+#include "fascia/base/StateIO.h"
 
 namespace fascia::mechanics {
 
@@ -17,6 +18,9 @@ void ConstantForce::addForce(core::BaseMechanicalState&, Positions& f, double t)
     const Vec3 fi = m_scale * m_perNode;
     for (int i : m_nodes) f[i] += fi;
 }
+
+void ConstantForce::saveState(core::StateWriter& out) const { out.put("scale", m_scale); }
+void ConstantForce::restoreState(core::StateReader& in) { m_scale = in.getDouble("scale"); }
 
 double ConstantForce::potentialEnergy(const core::BaseMechanicalState& s) const {
     double e = 0;

@@ -11,6 +11,9 @@ public:
     void init() override;
     void addForce(core::BaseMechanicalState& s, Positions& f, double t) override;
     double potentialEnergy(const core::BaseMechanicalState& s) const override;
+    /// The load factor of the last addForce (the energy's).
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     NodeSelection m_select{this};
     core::Param<Vec3> m_force{this, core::ParamSpec("force").unit("N").help("force applied to each selected node")};

@@ -1,4 +1,5 @@
 #include "DynamicRelaxation.h"
+#include "Integrator.h"
 #include "fascia/base/Error.h"
 
 #include <algorithm>
@@ -293,6 +294,53 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
     }
     d.c = c;
     return rep;
+}
+
+void DynamicRelaxation::saveState(core::StateWriter& out) const {
+    out.put("states", long(m_data.size()));
+    for (const auto& [state, d] : m_data) {
+        out.put("state", state->path());
+        out.put("shape", d.shape);
+        out.put("lambdaShape", d.lambdaShape);
+        out.put("safety", d.safety);
+        out.put("c", d.c);
+        out.put("diag", d.diag);
+    }
+    out.put("reports", long(m_reports.size()));
+    for (const LoadStepReport& r : m_reports) {
+        out.put("state", r.state);
+        out.put("loadStep", r.loadStep);
+        const double v[6] = {r.time, double(r.iterations), r.residual, r.load, r.rate, r.displacementError};
+        out.put("values", v, 6);
+        out.put("converged", r.converged);
+    }
+}
+
+void DynamicRelaxation::restoreState(core::StateReader& in) {
+    m_data.clear();
+    const long n = in.getLong("states");
+    for (long k = 0; k < n; ++k) {
+        const auto& s = savedState(*this, in, in.getText("state"));
+        StateData& d = m_data[&s];
+        d.shape.resize(s.size());
+        in.getInto("shape", d.shape.data(), d.shape.size());
+        d.lambdaShape = in.getDouble("lambdaShape");
+        d.safety = in.getDouble("safety");
+        d.c = in.getDouble("c");
+        d.diag = in.getDouble("diag");
+    }
+    m_reports.clear();
+    const long reports = in.getLong("reports");
+    for (long k = 0; k < reports; ++k) {
+        LoadStepReport r;
+        r.state = in.getText("state");
+        r.loadStep = in.getLong("loadStep");
+        double v[6];
+        in.getInto("values", v, 6);
+        r.time = v[0], r.iterations = long(v[1]), r.residual = v[2], r.load = v[3], r.rate = v[4], r.displacementError = v[5];
+        r.converged = in.getBool("converged");
+        m_reports.push_back(r);
+    }
 }
 
 std::string DynamicRelaxation::runSummary() const {

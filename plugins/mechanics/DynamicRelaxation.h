@@ -63,6 +63,10 @@ public:
     /// masses and step, so any dt is stable), and the scene's dt is not warned as above the force
     /// fields' critical step.
     double stableTimeStep(double critical, std::string& why) const override;
+    /// Per state what carries over between load steps (the fictitious mass shape and its scale, the
+    /// safety factor, the damping of the last iteration), and the reports of the load steps so far.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     /// One report per load step and state, in order.
     const std::vector<LoadStepReport>& reports() const { return m_reports; }

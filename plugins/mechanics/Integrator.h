@@ -1,5 +1,9 @@
 #pragma once
+#include "fascia/base/StateIO.h"
+#include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
+
+#include <string>
 
 namespace fascia::mechanics {
 
@@ -9,6 +13,14 @@ class DampedIntegrator : public core::BaseIntegrator {
 public:
     core::Param<double> m_damping{this, core::ParamSpec("damping").unit("1/s").min(0).help("mass-proportional Rayleigh damping alpha: damping force -alpha m v"), 0.0};
 };
+
+/// The state a checkpoint record names by path (integrators keep their history per state); an error of
+/// the reader when the scene has no such state.
+inline core::BaseMechanicalState& savedState(const core::Component& owner, core::StateReader& in, const std::string& path) {
+    auto* s = dynamic_cast<core::BaseMechanicalState*>(owner.node()->root()->resolveComponent(path));
+    if (!s) in.fail("[" + owner.path() + "] the checkpoint has a history for the state '" + path + "', which this scene does not have");
+    return *s;
+}
 
 /// Runs update(x, v, f, 1/m) on every component of every node of the group's state (x and v by
 /// reference), on the flat arrays so that the compiler vectorises it (core::forEachNodeRange).

@@ -26,6 +26,23 @@ void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
     g.projectState(t + dt);
 }
 
+void SemiImplicitEuler::saveState(core::StateWriter& out) const {
+    out.put("states", long(m_lastDt.size()));
+    for (const auto& [state, dt] : m_lastDt) {
+        out.put("state", state->path());
+        out.put("lastDt", dt);
+    }
+}
+
+void SemiImplicitEuler::restoreState(core::StateReader& in) {
+    m_lastDt.clear();
+    const long n = in.getLong("states");
+    for (long k = 0; k < n; ++k) {
+        const auto& s = savedState(*this, in, in.getText("state"));
+        m_lastDt.emplace_back(&s, in.getDouble("lastDt"));
+    }
+}
+
 double SemiImplicitEuler::stableTimeStep(double critical, std::string&) const {
     const double alpha = m_damping.get();
     if (alpha == 0.0) return critical;

@@ -26,6 +26,9 @@ public:
     /// 4 / (alpha + sqrt(alpha^2 + 4 omega_max^2)) with omega_max = 2 / critical; critical itself
     /// without damping.
     double stableTimeStep(double critical, std::string& why) const override;
+    /// The states stepped so far and the dt of their last step (the staggered velocities' half step).
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     core::Param<bool> m_halfStepStart{this, core::ParamSpec("halfStepStart").help("first velocity update over dt/2 (leapfrog start: second-order positions; velocities are then mid-step values)"), true};
 

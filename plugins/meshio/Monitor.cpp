@@ -1,4 +1,5 @@
 #include "Monitor.h"
+#include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <unistd.h>
@@ -138,7 +139,13 @@ void Monitor::observe(double t, long step) {
 
 void Monitor::writeRow(double t, long step) {
     m_lastStep = step;
-    if (!m_out) {
+    if (!m_out && m_append) {
+        // a restored run continues the file of the run that wrote the checkpoint, as it was then
+        std::error_code ec;
+        fs::resize_file(m_path, std::uintmax_t(m_bytes), ec);
+        m_out = std::make_unique<std::ofstream>(m_path, std::ios::app);
+        if (ec || !*m_out) fail(m_filename, "cannot write '" + m_path + "'" + (ec ? ": " + ec.message() : std::string()));
+    } else if (!m_out) {
         std::error_code ec;
         fs::create_directories(fs::path(m_path).parent_path(), ec);
         m_out = std::make_unique<std::ofstream>(m_path, std::ios::trunc);
@@ -202,6 +209,25 @@ void Monitor::writeRow(double t, long step) {
     row << "\n";
     *m_out << row.str();  // whole rows only
     m_out->flush();
+    m_bytes = long(m_out->tellp());
+}
+
+void Monitor::saveState(core::StateWriter& out) const {
+    out.put("lastStep", m_lastStep);
+    out.put("bytes", m_bytes);
+}
+
+void Monitor::restoreState(core::StateReader& in) {
+    m_lastStep = in.getLong("lastStep");
+    m_bytes = in.getLong("bytes");
+    m_append = m_bytes >= 0;
+    if (!m_append) return;
+    std::error_code ec;
+    const auto size = fs::file_size(m_path, ec);
+    if (ec || size < std::uintmax_t(m_bytes))
+        in.fail("[" + path() + "] its file '" + m_path + "' " +
+                (ec ? std::string("is missing") : "has " + std::to_string(size) + " bytes") + ", the checkpoint needs " +
+                std::to_string(m_bytes) + ": restart into the output folder of the run that wrote the checkpoint");
 }
 
 void Monitor::cleanup() {

@@ -26,6 +26,12 @@ public:
     void observe(double t, long step) override;
     void observeFinal(double t, long step) override;
     void cleanup() override;
+    /// The step of its last row and the length of its file then: a restored run cuts the file back to
+    /// that length (rows a longer run wrote after the checkpoint) and appends to it. The file must be
+    /// there, at least that long (an input error at restore otherwise: restart into the output folder
+    /// of the run that wrote the checkpoint).
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("CSV file, relative to the output folder (default: <name>.csv)")};
     core::Param<IndexList> m_indices{this, core::ParamSpec("indices").help("nodes to record (inline or linked, e.g. \"@box.indices\")")};
@@ -56,6 +62,8 @@ private:
     std::vector<core::BaseMass*> m_masses;             ///< for the kinetic energy
     std::vector<core::BaseForceField*> m_energyFields; ///< for the strain energy
     long m_lastStep = -1;  ///< the step of the last row
+    long m_bytes = -1;     ///< bytes in the file after its last row (-1: no file yet)
+    bool m_append = false; ///< a restored run: the first row cuts the file to m_bytes and appends
 };
 
 } // namespace fascia::meshio

@@ -32,6 +32,11 @@ public:
     /// The final state of the run, when `every` skipped it.
     void observeFinal(double t, long step) override;
     void cleanup() override;
+    /// The files of the series so far (time and name, for the .pvd) and the step of the last one: a
+    /// restored run lists the earlier files in its .pvd (a warning when one is not in the output
+    /// folder).
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     core::Param<std::string> m_filename{this, core::ParamSpec("filename").help("base name of the files, relative to the output folder (default: the component's name)")};
     core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write every N steps (the initial and the final state are always written)"), 1};

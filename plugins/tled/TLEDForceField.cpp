@@ -3,6 +3,7 @@
 #include "TLEDData.h"
 
 #include "fascia/base/Simd.h"
+#include "fascia/base/StateIO.h"
 #include "fascia/elements/Errors.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/Tensor3.h"
@@ -244,6 +245,35 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
         // per node, in block order (bitwise the same for any thread count); clears the buffers
         im.buffers.sumInto(core::flat(f));
     }
+}
+
+bool TLEDForceField::worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const {
+    return elements::worstElement(m_tets, m_hexes, state.x0(), state.x(), out);
+}
+
+void TLEDForceField::saveState(core::StateWriter& out) const {
+    const Impl& im = *m_impl;
+    if (im.visco.empty()) return;
+    out.put("series", long(im.visco.size()));
+    for (const ViscoSet& vs : im.visco) {
+        out.put("Yprev", vs.Yprev.data(), vs.Yprev.size());
+        out.put("Ycur", vs.Ycur.data(), vs.Ycur.size());
+    }
+    im.clock.save(out);
+}
+
+void TLEDForceField::restoreState(core::StateReader& in) {
+    Impl& im = *m_impl;
+    if (im.visco.empty()) return;
+    const long n = in.getLong("series");
+    if (n != long(im.visco.size()))
+        in.fail("[" + path() + "] the checkpoint has " + std::to_string(n) + " Prony series, this force field " +
+                std::to_string(im.visco.size()));
+    for (ViscoSet& vs : im.visco) {
+        in.getInto("Yprev", vs.Yprev.data(), vs.Yprev.size());
+        in.getInto("Ycur", vs.Ycur.data(), vs.Ycur.size());
+    }
+    im.clock.restore(in);
 }
 
 size_t TLEDForceField::bufferRows() const { return m_impl->buffers.rows(); }

@@ -1,5 +1,6 @@
 #pragma once
 /// TestNaN: a constant force on every node that turns NaN on one node at a chosen step.
+#include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -22,6 +23,8 @@ public:
             f[size_t(m_nanNode.get())][0] = std::numeric_limits<double>::quiet_NaN();
     }
     double stableTimeStep(const core::BaseMechanicalState&) const override { return m_criticalDt.get(); }
+    void saveState(core::StateWriter& out) const override { out.put("step", long(m_step)); }
+    void restoreState(core::StateReader& in) override { m_step = int(in.getLong("step")); }
 
 private:
     int m_step = 0;

@@ -11,6 +11,8 @@ namespace fascia::core {
 
 class Node;
 class Component;
+class StateWriter;
+class StateReader;
 
 /// Anything that holds parameters: components and nodes.
 class Base {
@@ -107,6 +109,16 @@ public:
     virtual void cleanup() {}
     /// Called at the start of each step, before any force is computed.
     virtual void beginStep(double t, double dt) {}
+
+    /// Writes what it carries from one step to the next (fascia/base/StateIO.h), between steps, for
+    /// a checkpoint (Simulation::save) or the divergence check's snapshot: everything a step or an
+    /// observation changes and the next one reads, so that a restored run continues bitwise as the
+    /// straight one. Default: nothing (a component whose members are set at init only).
+    virtual void saveState(StateWriter& out) const {}
+    /// Reads back, in the same order, what saveState wrote; called after init() and the dtChanged()
+    /// of the run's dt, before any step. Writes no file (observers continue their files at their next
+    /// record); a record of the wrong name or size is an error of the reader.
+    virtual void restoreState(StateReader& in) {}
 
     /// Components this one needs initialised first (besides those it links to by parameter).
     /// By default: the mesh source (BaseTopology) and the mechanical state found in its context,

@@ -15,6 +15,8 @@
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
 
+#include <cstdint>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <string>
@@ -23,6 +25,8 @@
 
 namespace fascia::core {
 
+class StateWriter;
+class StateReader;
 class BaseTool;
 
 /// A triangle surface to draw or export, valid until the scene changes: points (m) and triangles
@@ -112,6 +116,55 @@ public:
     /// Time spent in each component, sorted by path.
     std::vector<TimerRow> timers() const;
 
+    // ---- checkpoint and restart (core/src/SimulationState.cpp; the format: docs/design.md, section 1)
+
+    /// Writes the whole state between steps to `path`, atomically (written to `path.tmp` in the same
+    /// folder, fsync'ed, renamed over `path`): the time, the step, dt and the origin of the time
+    /// (the last dt change), every component's saveState() records (positions, velocities, forces,
+    /// integrator histories, Prony states, observer counters ...) and the scene hash. A file that
+    /// cannot be written is an output error (exit 1).
+    void save(const std::string& path) const;
+    /// Loads a checkpoint that save() wrote, into this simulation: call it after init() (fromFile and
+    /// fromString do it) and before the first step. It checks the magic, the format version, the byte
+    /// order, the size, the checksum, the scene hash (the same scene: every component's parameters and
+    /// every mesh file's content), then each component's records by name and size, and that every
+    /// record was read; each failure is an input error (exit 2) naming the file and, where known, the
+    /// component and the record. Nothing is written: the observers continue their files (the .pvd
+    /// lists the earlier files, a Monitor's CSV is cut back to its length at the checkpoint and
+    /// appended to) at their next record, and start() records no initial state. The run then goes
+    /// on bitwise as the one that wrote the checkpoint. When this scene's dt differs from the saved one
+    /// (another dt attribute, --dt, dt="auto" with another dtSafety), the run continues with the new dt
+    /// from the checkpoint's time, as after setDt. A failed restore leaves the simulation unusable.
+    void restore(const std::string& path);
+    /// The scene hash a checkpoint carries: hashBytes (fascia/base/StateIO.h) over, for every node
+    /// and component in scene order, its path, class and parameters (name and value as text, or the
+    /// link "@..." it reads; output parameters left out; the root's dt, dtSafety and endTime left out,
+    /// since a restart may change how far and with which step it runs), and for a file parameter
+    /// (MeshLoader's filename) the content of the file. Computed once.
+    std::uint64_t sceneHash() const;
+
+    /// The divergence check keeps a snapshot of the state (in memory, the checkpoint's records minus
+    /// the observers') every `steps` steps (default kSnapshotEvery; 0: none, and no last good state),
+    /// and after any dt change. After a step fails (a simulation error: NaN, a kinetic energy growing
+    /// without bound, an integrator or force field that gives up), saveLastGoodState() rebuilds the state
+    /// at the start of the failing step by restoring the snapshot and replaying the steps since it
+    /// with the observers muted (bitwise the same steps: docs/design.md, principle 5). Cost: one
+    /// serialisation per `steps` steps instead of a copy per step. An embedding program that writes
+    /// the state between steps (positions, external forces) makes the replay differ: it sets 1 (a
+    /// snapshot before every step, no replay).
+    void setSnapshotEvery(long steps);
+    static constexpr long kSnapshotEvery = 100;
+    static constexpr size_t kSnapshotsKept = 5;
+    /// After a failed step: writes the last good state as a checkpoint to `path` (see save) and
+    /// returns its step number; the simulation is then at that state. The last good state is the
+    /// start of the failing step, or, when the kinetic energy was growing past the growth rule's
+    /// factor at the steps before it, the start of the first of them (a state the unstable mode has
+    /// not yet amplified: MechanicalGroup::checkStep); no earlier than the oldest snapshot kept (the
+    /// last kSnapshotsKept). -1 when there is no failed step or no snapshot (setSnapshotEvery(0)).
+    long saveLastGoodState(const std::string& path);
+    /// The step that failed (1-based), -1 when none.
+    long failedStep() const { return m_failedStep; }
+
 private:
     /// Creates the output folder (start() does, when the scene is known to be valid).
     void createOutputDir() const;
@@ -131,6 +184,17 @@ private:
     void applyDt(double dt, bool warnAboveCritical);
     /// One step of dt; when `end` is a number, the time after it is exactly `end` (a run's last step).
     void advance(double end);
+    /// The checks after a group's step (MechanicalGroup::checkStep), their error completed with the
+    /// time, the worst element and a stable dt.
+    void checkGroup(MechanicalGroup& g);
+    /// "; at t = ...; worst element ...; a stable dt: ..." for a group that diverged.
+    std::string divergenceDiagnosis(const MechanicalGroup& g) const;
+    /// The state records (the Simulation's and every component's, observers too unless `observers` is
+    /// false) into w.
+    void writeState(StateWriter& w, bool observers) const;
+    /// Reads what writeState wrote (`observers` as it was written).
+    void readState(StateReader& r, bool observers);
+    void takeSnapshot();
     std::unique_ptr<Node> m_root;
     std::vector<MechanicalGroup> m_groups;
     std::vector<BaseObserver*> m_observers;
@@ -140,6 +204,13 @@ private:
     double m_timeAtDtChange = 0.0;  ///< time and step of the last dt change: time = t0 + (step - s0) dt
     long m_stepAtDtChange = 0;
     bool m_initialised = false, m_started = false, m_finished = false, m_failed = false;
+    bool m_replaying = false;           ///< saveLastGoodState's replay: observers muted
+    long m_snapshotEvery = kSnapshotEvery, m_snapshotStep = -1, m_failedStep = -1, m_lastGoodStep = -1;
+    /// the last kSnapshotsKept snapshots (step, records of writeState(.., false)), oldest first
+    std::deque<std::pair<long, std::string>> m_snapshots;
+    mutable std::uint64_t m_sceneHash = 0;
+    mutable std::string m_sceneLines;   ///< "path hash" per node and component, for the mismatch message
+    mutable bool m_haveSceneHash = false;
 };
 
 } // namespace fascia::core

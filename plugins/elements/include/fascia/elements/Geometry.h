@@ -49,4 +49,12 @@ double densityFor(const core::BaseMass& mass, double restVolume);
 double stableTimeStep(size_t elements, const std::function<double(size_t)>& length,
                       const std::function<const materials::BaseMaterial*(size_t)>& material, double rho);
 
+/// The worst element of a force field at the current positions x (core::BaseForceField::worstElement,
+/// the order of core::worseElement): J of each tetrahedron from its signed volume, of each hexahedron
+/// from the Jacobian of its trilinear map at its centre, each against the rest positions X; the
+/// index counts the tetrahedra, then the hexahedra; the centroid is that of the rest element. False
+/// when there is no element or a node is out of range of x or X.
+bool worstElement(const Tetrahedra& tets, const Hexahedra& hexes, const Positions& X, const Positions& x,
+                  core::ElementReport& out);
+
 } // namespace fascia::elements

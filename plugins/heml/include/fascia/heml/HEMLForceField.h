@@ -79,6 +79,12 @@ public:
     /// tau / max(J, J0), tau the Kirchhoff stress), per tetrahedron in the input order.
     void cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const override;
     size_t elementCount() const override;
+    /// elements::worstElement on its tetrahedra.
+    bool worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const override;
+    /// The viscous history: gamma_i of eq. (20) per term, relaxed part and slot, committed and current,
+    /// and the history clock (viscoelastic/HistoryClock.h); nothing without a ViscoelasticProny.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
 
     /// f += forces at positions x; x and f hold 3 doubles per node in the state's order (a

@@ -101,6 +101,12 @@ public:
     size_t elementCount() const override { return m_tets.size() + m_hexes.size(); }
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
     const Hexahedra* hexahedra() const override { return &m_hexes; }
+    /// elements::worstElement on its tetrahedra and hexahedra (cell order).
+    bool worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const override;
+    /// The viscous history (TLED eq. (30)): per Prony series the states Y_i of the last step and of
+    /// the current evaluation, and the time of that evaluation (nothing without a ViscoelasticProny).
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
 
     /// Second Piola-Kirchhoff stress of every element (6 per element, xx yy zz xy yz xz, cell order)
     /// as addForce() at time t would compute it, viscous history included, without advancing it.

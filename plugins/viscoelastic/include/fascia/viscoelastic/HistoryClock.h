@@ -17,6 +17,7 @@
 /// state: at the time of the last evaluation (a static solver's load step), from the previous
 /// history with the coefficients that evaluation used; at a later time (after an explicit step), from
 /// the current history over the time since (what the next evaluation at that time computes).
+#include "fascia/base/StateIO.h"
 #include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <cmath>
@@ -55,6 +56,19 @@ public:
     Output outputAt(double t, double dt) const {
         if (!m_evaluated || sameTime(t, dt)) return {};
         return {true, false, t - m_time};
+    }
+
+    /// The clock's state in a checkpoint (Simulation::save): with it, a restart advances the history
+    /// exactly as the run it continues.
+    void save(core::StateWriter& out) const {
+        out.put("clockEvaluated", m_evaluated);
+        out.put("clockTime", m_time);
+        out.put("clockElapsed", m_elapsed);
+    }
+    void restore(core::StateReader& in) {
+        m_evaluated = in.getBool("clockEvaluated");
+        m_time = in.getDouble("clockTime");
+        m_elapsed = in.getDouble("clockElapsed");
     }
 
 private:
