@@ -190,6 +190,8 @@ public:
     virtual void observeFinal(double t, long step) {}
 };
 
+class BaseStepBackend;
+
 /// One state with everything acting on it, as assembled by the simulation for its integrator.
 struct MechanicalGroup {
     BaseIntegrator* integrator = nullptr;
@@ -217,6 +219,24 @@ struct MechanicalGroup {
     void projectState(double t);
     /// Throws a simulation error naming the step and the component when x, v or f holds NaN/inf.
     void checkFinite(double t);
+    /// Runs the group's whole step instead of the integrator (a GPU backend, BaseStepBackend), or
+    /// null. The integrator still gives the group's stable time step and its parameters. (Last, so
+    /// that the members plugins built before it read keep their offsets.)
+    BaseStepBackend* backend = nullptr;
+};
+
+/// Runs whole steps of mechanical groups elsewhere than in the integrators' host loops (the cuda
+/// plugin's CudaStep: forces, constraints and the update on a GPU). At most one, in the root node,
+/// so that the device is chosen in one place (docs/design.md, section 4.5). After the groups are
+/// assembled and their masses summed, Simulation::init calls adopt() for each group; a backend that
+/// cannot run a component of the group fails located at that component (never a silent fallback
+/// to the host). Then step() replaces integrator->step() for that group; on return the state's x and
+/// v hold the new state (the finite check and the observers read them). The integrator stays the
+/// group's: it still gives the stable time step, and its parameters say what to run.
+class BaseStepBackend : public Component {
+public:
+    virtual void adopt(MechanicalGroup& group) = 0;
+    virtual void step(MechanicalGroup& group, double t, double dt) = 0;
 };
 
 } // namespace fascia::core
