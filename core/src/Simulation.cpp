@@ -437,6 +437,18 @@ BaseMechanicalState& Simulation::state(const std::string& nameOrPath) {
     return *s;
 }
 
+SurfaceView Simulation::surface(const std::string& nameOrPath) {
+    Component* c = find(nameOrPath);
+    if (auto* v = dynamic_cast<BaseVisualSurface*>(c)) return {&v->points(), &v->triangles(), v->body()};
+    auto* s = dynamic_cast<BaseMechanicalState*>(c);
+    if (!s) throwInputError({}, "no mechanical state or visual surface '" + nameOrPath + "' in the scene");
+    const BaseTopology* topo = s->node()->findInContext<BaseTopology>();
+    if (!topo || topo->meshData().points.size() != s->size() || topo->boundaryTriangles().empty())
+        throwInputError({}, "mechanical state '" + nameOrPath + "' has no boundary surface: it needs a mesh source with "
+                                                            "volume elements and as many nodes in its context (MeshLoader, GridMesh)");
+    return {&s->x(), &topo->boundaryTriangles(), s};
+}
+
 BaseTool& Simulation::tool(const std::string& nameOrPath) {
     Component* c = find(nameOrPath);
     auto* t = dynamic_cast<BaseTool*>(c);

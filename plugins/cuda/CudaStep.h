@@ -1,6 +1,6 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
-/// body on a CUDA device (docs/design.md, section 4.5): TLEDForceField's element kernel on
+/// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernel on
 /// tetrahedra (the laws of DeviceLaws.h), then a node kernel that sums each node's element forces
 /// in a fixed order, adds ConstantForce and gravity, holds FixedConstraint's axes and integrates
 /// with SemiImplicitEuler (HEML eq. (32)), in float or double. A component it cannot run is a

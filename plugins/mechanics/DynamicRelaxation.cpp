@@ -56,11 +56,13 @@ DynamicRelaxation::StateData& DynamicRelaxation::setUp(core::MechanicalGroup& g)
 }
 
 void DynamicRelaxation::freeComponents(core::MechanicalGroup& g, StateData& d) const {
-    // the constraints zero the force components they hold: project a vector of ones
+    // the constraints zero the force components they hold: project a vector of ones (a constraint
+    // that lists no nodes, a contact whose nodes change with the state, holds no component for good)
     Positions& f = g.state->f();
     const size_t n = f.size();
     std::fill(f.begin(), f.end(), Vec3::Ones());
-    for (auto* c : g.constraints) c->projectForces(*g.state);
+    for (auto* c : g.constraints)
+        if (!c->constrainedNodes().empty()) c->projectForces(*g.state);
     d.free.assign(3 * n, 0.0);
     for (size_t i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k) d.free[3 * i + k] = (f[i][k] != 0.0 && d.shape[i] > 0) ? 1.0 : 0.0;
@@ -207,6 +209,8 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
         rep.converged = true;
         return rep;
     }
+    bool unilateral = false;  // a constraint without a fixed node list (a contact) acts on the iterates
+    for (auto* c : g.constraints) unilateral = unilateral || c->constrainedNodes().empty();
     std::vector<double> incr;  // ||du|| of the iterations
     Positions rNew(n);
     int restarts = 0;
@@ -220,6 +224,9 @@ LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, 
                 x[i][k] = xi + beta * (xi - d.prev[i][k]) + alpha * d.invMass[3 * i + k] * d.r[i][k];
                 d.prev[i][k] = xi;
             }
+        // the constraints' positions again: the held components are where they were, and a contact
+        // (a tool) puts the nodes that moved into it back onto its surface
+        if (unilateral) g.projectState(t);
         g.computeForces(t);
         rn = residual(g, d, rNew);
         // Rayleigh quotient of the increment: du . K du / du . M du, K du ~ -(r(n+1) - r(n))

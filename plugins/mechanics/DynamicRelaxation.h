@@ -49,6 +49,9 @@ struct LoadStepReport {
 ///   every iteration of a step evaluates forces at the same time t + dt, from the history committed
 ///   at the previous step (HEML and TLED recompute the new history from the committed one at each
 ///   evaluation of a step), and the last evaluation is at the converged solution.
+/// - A constraint that lists no nodes (a rigid tool's contact, plugins/contact) is unilateral: it holds
+///   no component for good, and with one in the group every iteration projects the constraints'
+///   positions again (docs/design.md, section 4.5).
 /// A load step that does not converge within maxIterations is a located warning naming the step,
 /// the residual and the rate; the run goes on, and runFailed() makes fascia-run exit 3.
 class DynamicRelaxation : public core::BaseIntegrator {

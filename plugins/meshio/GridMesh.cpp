@@ -1,9 +1,9 @@
 #include "GridMesh.h"
+#include "fascia/surface/BoundaryFaces.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <map>
 
 namespace fascia::meshio {
 
@@ -15,49 +15,6 @@ double lerp(double lo, double hi, int i, int n) {
 }
 double signedVolume(const Positions& p, const std::array<int, 4>& t) {
     return (p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])) / 6.0;
-}
-/// The faces that only one element uses, as triangles turned away from that element (the quads of
-/// hexahedra split in two along their first diagonal). Only faces with every node on the surface
-/// (`onSurface`) can be one, so only those are counted: the work grows with the surface.
-template <class OnSurface>
-Triangles boundaryTriangles(const MeshData& m, OnSurface onSurface) {
-    struct Face {
-        std::vector<int> nodes;  // in order around the face
-        Vec3 inside;             // the centroid of its element
-        int uses = 0;
-    };
-    std::map<std::vector<int>, Face> faces;
-    auto add = [&](std::vector<int> nodes, const Vec3& inside) {
-        for (int n : nodes)
-            if (!onSurface(n)) return;
-        std::vector<int> key = nodes;
-        std::sort(key.begin(), key.end());
-        auto [it, fresh] = faces.try_emplace(key, Face{std::move(nodes), inside, 0});
-        ++it->second.uses;
-    };
-    for (const auto& t : m.tetrahedra) {
-        const Vec3 c = (m.points[t[0]] + m.points[t[1]] + m.points[t[2]] + m.points[t[3]]) / 4;
-        for (int k = 0; k < 4; ++k) add({t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}, c);
-    }
-    static const int Q[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-    for (const auto& h : m.hexahedra) {
-        Vec3 c = Vec3::Zero();
-        for (int n : h) c += m.points[n] / 8;
-        for (const auto& q : Q) add({h[q[0]], h[q[1]], h[q[2]], h[q[3]]}, c);
-    }
-    Triangles out;
-    auto outward = [&](std::array<int, 3> t, const Vec3& inside) {
-        const Vec3 n = (m.points[t[1]] - m.points[t[0]]).cross(m.points[t[2]] - m.points[t[0]]);
-        if (n.dot(m.points[t[0]] - inside) < 0) std::swap(t[1], t[2]);
-        out.push_back(t);
-    };
-    for (const auto& [key, f] : faces) {
-        if (f.uses != 1) continue;
-        const auto& v = f.nodes;
-        outward({v[0], v[1], v[2]}, f.inside);
-        if (v.size() == 4) outward({v[0], v[2], v[3]}, f.inside);
-    }
-    return out;
 }
 } // namespace
 
@@ -102,7 +59,8 @@ MeshData makeGrid(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz, const 
             if (p[a] == lo[a] || p[a] == hi[a]) return true;
         return false;
     };
-    m.triangles = boundaryTriangles(m, onSurface);
+    // only faces with every node on the box can be boundary faces: the work grows with the surface
+    m.triangles = surface::boundaryTriangles(m, onSurface);
     m.triangleGroup.assign(m.triangles.size(), 0);
     const char* names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
     const int res[3] = {nx, ny, nz};
@@ -125,7 +83,9 @@ void GridMesh::init() {
     const auto& r = m_resolution.get();
     const double cells = double(r[0]) * r[1] * r[2];
     if (cells > 5e7) fail(m_resolution, "resolution gives " + std::to_string(cells) + " cells; at most 5e7");
-    publish(makeGrid(lo, hi, r[0], r[1], r[2], m_element.get()));
+    MeshData m = makeGrid(lo, hi, r[0], r[1], r[2], m_element.get());
+    const Triangles boundary = m.triangles;  // the grid's triangles are its boundary
+    publish(std::move(m), &boundary);
 }
 
 } // namespace fascia::meshio

@@ -16,8 +16,9 @@ public:
     core::Param<Triangles> m_triangles{this, core::ParamSpec("triangles").output().help("boundary triangles: a GridMesh's, turned outwards; a file's triangles as the file has them")};
 
 protected:
-    /// Publishes a mesh to the outputs.
-    void publish(MeshData mesh);
+    /// Publishes a mesh to the outputs, with the boundary of its volume elements
+    /// (BaseTopology::boundaryTriangles; computed here unless given).
+    void publish(MeshData mesh, const Triangles* boundary = nullptr);
 };
 
 } // namespace fascia::meshio

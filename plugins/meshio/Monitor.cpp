@@ -19,6 +19,7 @@ const char* tensorSuffix6[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
 void Monitor::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
+    if (!m_st && m_tool.get()) m_st = m_tool->body();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
     if (m_group.isSet()) {
         auto* topo = node()->findInContext<core::BaseTopology>();
@@ -84,6 +85,10 @@ void Monitor::init() {
     }
     if (m_reactionOf.get())
         for (int a = 0; a < 3; ++a) h << ",reaction_" << axis[a] << " [N]";
+    if (auto* tool = m_tool.get()) {
+        for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_force_" << axis[a] << " [N]";
+        for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_torque_" << axis[a] << " [N m]";
+    }
     // the masses and the element force fields acting on the state, for the energies
     m_masses.clear();
     m_energyFields.clear();
@@ -162,6 +167,10 @@ void Monitor::writeRow(double t, long step) {
             for (int a = 0; a < 3; ++a)
                 if (axes[a]) sum[a] += m_st->reaction()[i][a];
         row << "," << sum[0] << "," << sum[1] << "," << sum[2];
+    }
+    if (auto* tool = m_tool.get()) {
+        const Vec3 f = tool->force(), tq = tool->torque();
+        row << "," << f[0] << "," << f[1] << "," << f[2] << "," << tq[0] << "," << tq[1] << "," << tq[2];
     }
     if (m_kineticEnergy.get()) {
         double e = 0;  // in node order

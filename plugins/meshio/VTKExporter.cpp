@@ -23,20 +23,6 @@ namespace fs = std::filesystem;
 
 namespace fascia::meshio {
 
-void writeFileAtomically(const std::string& path, const std::string& text) {
-    const fs::path p(path);
-    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp");
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) throw core::Error(core::ErrorKind::Internal, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
-    }
-    std::error_code ec;
-    fs::rename(tmp, p, ec);
-    if (ec) throw core::Error(core::ErrorKind::Internal, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
-}
-
 void VTKExporter::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
@@ -44,14 +30,7 @@ void VTKExporter::init() {
     if (m_base.empty() || m_base.back() == '/') fail(m_filename, "filename must name files, e.g. \"liver\"");
     const fs::path pvd = fs::path(node()->context().outputDir) / (m_base + ".pvd");
     node()->context().claimOutput(pvd.string(), *this);
-    // temporary files a killed run left behind
-    std::error_code ec;
-    const std::string stem = "." + fs::path(m_base).filename().string() + "_";
-    for (auto& e : fs::directory_iterator(pvd.parent_path().empty() ? fs::path(".") : pvd.parent_path(), ec)) {
-        const std::string n = e.path().filename().string();
-        if ((n.rfind(stem, 0) == 0 || n == "." + pvd.filename().string() + ".tmp") && e.path().extension() == ".tmp")
-            fs::remove(e.path(), ec);
-    }
+    removeStaleTemporaries(pvd.string(), fs::path(m_base).filename().string());  // what a killed run left
     // the element force fields acting on the state (for cells and cell data)
     m_forceFields.clear();
     node()->root()->visit([&](const core::Node& n) {
@@ -59,10 +38,47 @@ void VTKExporter::init() {
             if (ff->node()->findInContext<core::BaseMechanicalState>() == m_st && (ff->tetrahedra() || ff->hexahedra()))
                 m_forceFields.push_back(ff);
     });
-    m_written.clear();
-    m_listed = 0;
-    m_lastCollection = 0;
+    m_pvd.reset(pvd.string());
     m_lastStep = -1;
+    m_surfaceNodes.clear();
+    m_surfaceTriangles.clear();
+    if (m_surface.get()) {
+        const auto* topo = m_st->node()->findInContext<core::BaseTopology>();
+        if (!topo || topo->meshData().points.size() != m_st->size() || topo->boundaryTriangles().empty())
+            fail(m_surface, "surface=\"true\" needs the body's boundary: a mesh source with volume elements and as many nodes "
+                            "as the state in the state's context (MeshLoader, GridMesh)");
+        // the boundary nodes in index order, and the triangles renumbered over them
+        const Triangles& b = topo->boundaryTriangles();
+        std::vector<int> local(m_st->size(), -1);
+        for (const auto& t : b)
+            for (int n : t) local[size_t(n)] = 0;
+        for (size_t i = 0; i < local.size(); ++i)
+            if (local[i] == 0) {
+                local[i] = int(m_surfaceNodes.size());
+                m_surfaceNodes.push_back(int(i));
+            }
+        for (const auto& t : b) m_surfaceTriangles.push_back({local[size_t(t[0])], local[size_t(t[1])], local[size_t(t[2])]});
+        m_surfaceSeries.start(*this, m_base + "_surface", m_compression.get());
+    }
+}
+
+void VTKExporter::writeSurface(double t, long step) {
+    const size_t n = m_surfaceNodes.size();
+    m_surfacePoints.resize(n);
+    m_surfaceDisplacement.resize(n);
+    m_surfaceVelocity.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const size_t k = size_t(m_surfaceNodes[i]);
+        m_surfacePoints[i] = m_st->x()[k];
+        m_surfaceDisplacement[i] = m_st->x()[k] - m_st->x0()[k];
+        m_surfaceVelocity[i] = m_st->v()[k];
+    }
+    SurfaceFrame frame;
+    frame.points = &m_surfacePoints;
+    frame.triangles = &m_surfaceTriangles;
+    frame.arrays = {{"displacement", &m_surfaceDisplacement}, {"velocity", &m_surfaceVelocity}};
+    frame.nodeIds = &m_surfaceNodes;
+    m_surfaceSeries.write(t, step, frame);
 }
 
 void VTKExporter::observe(double t, long step) {
@@ -212,27 +228,14 @@ void VTKExporter::writeStep(double t, long step) {
     }
     fs::rename(tmp, target, ec);
     if (ec) throw core::Error(core::ErrorKind::Internal, loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
-    m_written.emplace_back(t, (fs::path(m_base).parent_path() / fileName).string());
-    const double now = core::timerNow();  // steady_clock, or the clock a test injects (setTimerClock)
-    if (m_written.size() <= 100 || now - m_lastCollection >= 1.0) {
-        writeCollection();
-        m_lastCollection = now;
-    }
+    m_pvd.add(t, fileName);
+    if (m_surfaceSeries.started()) writeSurface(t, step);
 }
 
 void VTKExporter::cleanup() {
-    if (m_st && m_written.size() != m_listed) writeCollection();
-}
-
-void VTKExporter::writeCollection() {
-    std::ostringstream s;
-    s.precision(17);
-    s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
-    for (auto& [t, f] : m_written)
-        s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << fs::path(f).filename().string() << "\"/>\n";
-    s << "  </Collection>\n</VTKFile>\n";
-    writeFileAtomically((fs::path(node()->context().outputDir) / (m_base + ".pvd")).string(), s.str());
-    m_listed = m_written.size();
+    if (!m_st) return;
+    m_pvd.finish();
+    if (m_surfaceSeries.started()) m_surfaceSeries.finish();
 }
 
 } // namespace fascia::meshio

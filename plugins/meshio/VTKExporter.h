@@ -1,4 +1,6 @@
 #pragma once
+#include "PvdSeries.h"
+#include "SurfaceSeries.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <vector>
@@ -17,6 +19,12 @@ namespace fascia::meshio {
 /// rewritten after every file while the series is short; past 100 files at most once a second of
 /// wall time (a full rewrite per file would grow quadratically), and always at the end of the run.
 /// The time is core::timerNow(): std::chrono::steady_clock unless a test injects a clock.
+/// With surface="true" it also writes the body's boundary surface (BaseTopology::boundaryTriangles
+/// of the mesh source in its context) at the same steps, as <filename>_surface.pvd and one .vtp per
+/// step holding only the boundary nodes, with point data displacement, velocity and nodeId (the
+/// state's node index). Off by default: the .vtu already holds the volume, whose surface ParaView
+/// extracts, and a second file per frame costs write time (docs/performance.md, lesson 15); scenes
+/// that render the surface elsewhere turn it on.
 class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
@@ -31,21 +39,22 @@ public:
         "compression of the data in the .vtu files: lz4 (fast; ParaView 5.5 and later), zlib (smaller, about 10 "
         "times slower to write) or none"), "lz4"};
     core::Param<bool> m_cellData{this, core::ParamSpec("cellData").help("write the force fields' per-element data (J, stresses)"), true};
+    core::Param<bool> m_surface{this, core::ParamSpec("surface").help("also write the body's boundary surface as a .vtp series (<filename>_surface.pvd)"), false};
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to write (default: the one in the context)")};
 
 private:
     void writeStep(double t, long step);
-    void writeCollection();
+    void writeSurface(double t, long step);
     core::BaseMechanicalState* m_st = nullptr;
     std::vector<core::BaseForceField*> m_forceFields;
-    std::vector<std::pair<double, std::string>> m_written;  ///< (time, file name) in the .pvd
+    PvdSeries m_pvd;
     std::string m_base;
-    size_t m_listed = 0;  ///< files listed in the .pvd on disk
-    double m_lastCollection = 0;  ///< core::timerNow() (s) at its last rewrite
     long m_lastStep = -1;         ///< the step of the last file written
+    // the boundary surface (surface="true"): its nodes (state indices) and triangles over them
+    SurfaceSeries m_surfaceSeries;
+    IndexList m_surfaceNodes;
+    Triangles m_surfaceTriangles;
+    Positions m_surfacePoints, m_surfaceDisplacement, m_surfaceVelocity;
 };
-
-/// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).
-void writeFileAtomically(const std::string& path, const std::string& text);
 
 } // namespace fascia::meshio

@@ -17,6 +17,12 @@ cmake --build "$work/example" -j 2 > "$work/build.log" 2>&1 || { cat "$work/buil
 lib="$work/example/libfascia_example.so"
 [ -f "$lib" ] || fail "the example plugin was not built"
 
+# the haptics example (an embedding program, no plugin) builds against the installed package too
+cmake -S "$src/examples/haptics" -B "$work/haptics" -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure-haptics.log" 2>&1 || { cat "$work/configure-haptics.log"; fail "configure the haptics example"; }
+cmake --build "$work/haptics" -j 2 > "$work/build-haptics.log" 2>&1 || { cat "$work/build-haptics.log"; fail "build the haptics example"; }
+[ -x "$work/haptics/fascia-haptics-demo" ] || fail "the haptics example was not built"
+
 # the plugin's own conformance program: its force field and its material (in HEML and TLED)
 "$work/example/example_conformance" || fail "the example's conformance checks"
 

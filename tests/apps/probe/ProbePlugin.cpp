@@ -10,7 +10,9 @@
 
 #include <omp.h>
 
+#include <atomic>
 #include <csignal>
+#include <ctime>
 #include <fstream>
 
 namespace fascia::test {
@@ -34,23 +36,40 @@ public:
     }
     void beginStep(double, double) override {
         if (++m_steps != m_pauseAtStep.get()) return;
-        // block the signals first: one that arrives between the ready file and the wait stays
-        // pending, and sigsuspend delivers it (no race, no timeout)
-        sigset_t block, old;
-        sigemptyset(&block);
-        sigaddset(&block, SIGINT);
-        sigaddset(&block, SIGTERM);
-        sigprocmask(SIG_BLOCK, &block, &old);
+        // the signal may be delivered to any thread of the process (VTK's TBB workers, OpenMP's):
+        // a handler of ours, chained before fascia-run's, raises a flag that this thread waits for,
+        // whichever thread runs it. Installed before the ready file, so no signal is missed; the
+        // poll interval decides nothing (the wait ends when the flag is up).
+        s_seen = 0;
+        struct sigaction ours {}, oldInt {}, oldTerm {};
+        ours.sa_handler = &TestProbe::onSignal;
+        sigemptyset(&ours.sa_mask);
+        sigaction(SIGINT, nullptr, &oldInt);
+        sigaction(SIGTERM, nullptr, &oldTerm);
+        s_chainInt = oldInt.sa_handler;
+        s_chainTerm = oldTerm.sa_handler;
+        sigaction(SIGINT, &ours, nullptr);
+        sigaction(SIGTERM, &ours, nullptr);
         std::ofstream(m_readyFile.get().resolved) << m_steps << "\n";
-        sigset_t wait = old;
-        sigdelset(&wait, SIGINT);
-        sigdelset(&wait, SIGTERM);
-        sigsuspend(&wait);  // returns once fascia-run's handler has run
-        sigprocmask(SIG_SETMASK, &old, nullptr);
+        while (!s_seen) {
+            const timespec ms{0, 1000000};
+            nanosleep(&ms, nullptr);
+        }
+        sigaction(SIGINT, &oldInt, nullptr);
+        sigaction(SIGTERM, &oldTerm, nullptr);
     }
     void observe(double, long) override {}
 
 private:
+    static void onSignal(int sig) {
+        using Handler = void (*)(int);
+        const Handler chained = sig == SIGINT ? s_chainInt : s_chainTerm;
+        if (chained != SIG_DFL && chained != SIG_IGN && chained) chained(sig);  // fascia-run's: it stops the run
+        s_seen = 1;
+    }
+    static inline std::atomic<int> s_seen{0};  // lock-free: safe in a handler and across threads
+    static inline void (*s_chainInt)(int) = nullptr;
+    static inline void (*s_chainTerm)(int) = nullptr;
     int m_steps = 0;
 };
 

@@ -574,7 +574,7 @@ TEST_CASE("RequiredPlugin errors are located", "[SceneLoader][PluginManager]") {
 </Node>)");
         REQUIRE(e);
         CHECK(e->loc().line == 2);
-        CHECK_THAT(e->what(), Contains("was built for ABI 999, this is ABI 2: rebuild it against Fascia"));
+        CHECK_THAT(e->what(), Contains("was built for ABI 999, this is ABI 3: rebuild it against Fascia"));
     }
 }
 

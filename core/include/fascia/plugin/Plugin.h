@@ -5,7 +5,8 @@
 /// Bumped whenever a change to the core breaks binary compatibility with built plugins.
 /// 2: BaseIntegrator::stableTimeStep, BaseConstraint::prescribesMotion and BaseObserver::observeFinal
 /// (new virtual functions) and the load-curve parameters.
-#define FASCIA_ABI_VERSION 2
+/// 3: BaseTopology holds the boundary triangles (a new member), BaseVisualSurface.
+#define FASCIA_ABI_VERSION 3
 
 namespace fascia::core {
 

@@ -16,8 +16,16 @@ namespace fascia::core {
 class BaseTopology : public Component {
 public:
     virtual const MeshData& meshData() const = 0;
+    /// The boundary of the volume elements: the faces that only one tetrahedron or hexahedron has,
+    /// turned outwards (normal (b - a) x (c - a) out of the body; a hexahedron's quadrilateral split
+    /// in two), node indices of meshData().points. Filled by the mesh source's init; empty before.
+    /// The body's surface for rendering and output (Simulation::surface, VTKExporter surface="true").
+    const Triangles& boundaryTriangles() const { return m_boundary; }
     /// A mesh source reads files or parameters only.
     std::vector<Component*> dependencies() const override { return {}; }
+
+protected:
+    Triangles m_boundary;
 };
 
 /// Node data of one deformable body: positions, rest positions, velocities, forces, reactions.
@@ -192,6 +200,21 @@ public:
 
 class BaseStepBackend;
 
+/// A triangle surface that moves with a body, updated after every step as an observer: a finer
+/// visual surface mapped onto the body (meshio's BarycentricSurfaceMapping). Read it between steps
+/// through Simulation::surface. Storage lives here so that readers need no plugin header.
+class BaseVisualSurface : public BaseObserver {
+public:
+    const Positions& points() const { return m_points; }      ///< current vertex positions (m)
+    const Triangles& triangles() const { return m_triangles; }  ///< vertex indices, turned outwards
+    /// The state the surface follows (null before init).
+    virtual const BaseMechanicalState* body() const = 0;
+
+protected:
+    Positions m_points;
+    Triangles m_triangles;
+};
+
 /// One state with everything acting on it, as assembled by the simulation for its integrator.
 struct MechanicalGroup {
     BaseIntegrator* integrator = nullptr;
@@ -227,7 +250,7 @@ struct MechanicalGroup {
 
 /// Runs whole steps of mechanical groups elsewhere than in the integrators' host loops (the cuda
 /// plugin's CudaStep: forces, constraints and the update on a GPU). At most one, in the root node,
-/// so that the device is chosen in one place (docs/design.md, section 4.5). After the groups are
+/// so that the device is chosen in one place (docs/design.md, section 4.7). After the groups are
 /// assembled and their masses summed, Simulation::init calls adopt() for each group; a backend that
 /// cannot run a component of the group fails located at that component (never a silent fallback
 /// to the host). Then step() replaces integrator->step() for that group; on return the state's x and

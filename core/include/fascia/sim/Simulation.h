@@ -9,6 +9,8 @@
 ///     sim->step();
 ///     feedback = organ.reaction()[tool];      // read forces
 /// }
+/// auto skin = sim->surface("organ");          // the body's boundary triangles, for rendering
+/// draw(*skin.points, *skin.triangles);        // (or a visual surface: sim->surface("visual"))
 /// ```
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
@@ -22,6 +24,14 @@
 namespace fascia::core {
 
 class BaseTool;
+
+/// A triangle surface to draw or export, valid until the scene changes: points (m) and triangles
+/// indexing them, turned outwards. Read it between steps.
+struct SurfaceView {
+    const Positions* points = nullptr;
+    const Triangles* triangles = nullptr;
+    const BaseMechanicalState* body = nullptr;  ///< the state it moves with
+};
 
 struct TimerRow {
     std::string path, type;
@@ -84,6 +94,11 @@ public:
     Node& root() { return *m_root; }
     /// A mechanical state by name or path ("organ", "/root/liver/mo"); throws when there is none.
     BaseMechanicalState& state(const std::string& nameOrPath);
+    /// A surface by name or path: for a mechanical state, its boundary (points: the state's x(),
+    /// triangles: the boundary triangles of the mesh source in its context,
+    /// BaseTopology::boundaryTriangles); for a visual surface (BaseVisualSurface, e.g.
+    /// BarycentricSurfaceMapping), its moved vertices and triangles. Throws when there is none.
+    SurfaceView surface(const std::string& nameOrPath);
     /// A rigid tool (fascia/sim/Tool.h) by name or path ("probe", "/root/probe"); throws an input
     /// error when there is none or the component of that name is no tool.
     BaseTool& tool(const std::string& nameOrPath);

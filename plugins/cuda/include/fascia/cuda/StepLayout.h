@@ -1,5 +1,5 @@
 #pragma once
-/// The data layout of the device step (docs/design.md, section 4.5): every array of the mesh as a
+/// The data layout of the device step (docs/design.md, section 4.7): every array of the mesh as a
 /// plain pointer, structure of arrays over the whole mesh, so that consecutive threads (elements,
 /// nodes) read consecutive addresses. The GPU path (CudaRunner.cu) and the CPU emulation
 /// (EmulatedRunner.h) both fill it from the same host arrays (StepArraysHost, StepSetup.h) and run the

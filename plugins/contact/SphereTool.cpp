@@ -1,0 +1,17 @@
+#include "SphereTool.h"
+
+namespace fascia::contact {
+
+double SphereTool::signedDistance(const Vec3& local, Vec3& normal) const {
+    const double r = local.norm();
+    normal = r > 0 ? Vec3(local / r) : Vec3(0, 0, 1);  // the centre: any direction is the closest
+    return r - m_radius.get();
+}
+
+bool SphereTool::localBounds(double margin, Vec3& lo, Vec3& hi) const {
+    hi = Vec3::Constant(m_radius.get() + margin);
+    lo = -hi;
+    return true;
+}
+
+} // namespace fascia::contact

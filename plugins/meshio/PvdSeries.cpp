@@ -1,0 +1,68 @@
+#include "PvdSeries.h"
+#include "fascia/base/Component.h"
+#include "fascia/base/Error.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace fascia::meshio {
+
+void writeFileAtomically(const std::string& path, const std::string& text) {
+    const fs::path p(path);
+    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp");
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        if (!out) throw core::Error(core::ErrorKind::Internal, {}, "cannot write '" + tmp.string() + "' (disk full or no permission?)");
+    }
+    std::error_code ec;
+    fs::rename(tmp, p, ec);
+    if (ec) throw core::Error(core::ErrorKind::Internal, {}, "cannot rename '" + tmp.string() + "' to '" + path + "': " + ec.message());
+}
+
+void removeStaleTemporaries(const std::string& pvdPath, const std::string& stem) {
+    const fs::path pvd(pvdPath);
+    std::error_code ec;
+    const std::string prefix = "." + stem + "_";
+    for (auto& e : fs::directory_iterator(pvd.parent_path().empty() ? fs::path(".") : pvd.parent_path(), ec)) {
+        const std::string n = e.path().filename().string();
+        if ((n.rfind(prefix, 0) == 0 || n == "." + pvd.filename().string() + ".tmp") && e.path().extension() == ".tmp")
+            fs::remove(e.path(), ec);
+    }
+}
+
+void PvdSeries::reset(std::string pvdPath) {
+    m_path = std::move(pvdPath);
+    m_written.clear();
+    m_listed = 0;
+    m_lastWrite = 0;
+}
+
+void PvdSeries::add(double t, std::string file) {
+    m_written.emplace_back(t, std::move(file));
+    const double now = core::timerNow();  // steady_clock, or the clock a test injects (setTimerClock)
+    if (m_written.size() <= 100 || now - m_lastWrite >= 1.0) {
+        write();
+        m_lastWrite = now;
+    }
+}
+
+void PvdSeries::finish() {
+    if (!m_path.empty() && m_written.size() != m_listed) write();
+}
+
+void PvdSeries::write() {
+    std::ostringstream s;
+    s.precision(17);
+    s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+    for (auto& [t, f] : m_written) s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
+    s << "  </Collection>\n</VTKFile>\n";
+    writeFileAtomically(m_path, s.str());
+    m_listed = m_written.size();
+}
+
+} // namespace fascia::meshio

@@ -1,0 +1,40 @@
+#pragma once
+/// The .pvd index of a ParaView time series, shared by every series the exporters write (the
+/// VTKExporter's .vtu volume and .vtp surface, a visual surface's .vtp).
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace fascia::meshio {
+
+/// Lists (time, file) pairs in a .pvd file. It is rewritten after every file while the series is
+/// short; past 100 files at most once a second of wall time (a full rewrite per file would grow
+/// quadratically; docs/performance.md, lesson 15), and always by finish(). The time is
+/// core::timerNow(): std::chrono::steady_clock unless a test injects a clock.
+class PvdSeries {
+public:
+    /// Starts an empty series indexed by `pvdPath`.
+    void reset(std::string pvdPath);
+    /// Adds a file written for time t; `file` is relative to the .pvd's folder.
+    void add(double t, std::string file);
+    /// Rewrites the index when it lacks files (end of the run).
+    void finish();
+    size_t size() const { return m_written.size(); }
+    const std::string& path() const { return m_path; }
+
+private:
+    void write();
+    std::string m_path;
+    std::vector<std::pair<double, std::string>> m_written;
+    size_t m_listed = 0;          ///< files listed in the .pvd on disk
+    double m_lastWrite = 0;       ///< core::timerNow() (s) at its last rewrite
+};
+
+/// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).
+void writeFileAtomically(const std::string& path, const std::string& text);
+
+/// Removes the temporary files (".<stem>_*.tmp", ".<pvd>.tmp") that a killed run left beside
+/// the .pvd of a series whose files are named <stem>_<step>.
+void removeStaleTemporaries(const std::string& pvdPath, const std::string& stem);
+
+} // namespace fascia::meshio

@@ -1,0 +1,44 @@
+#pragma once
+/// A ParaView time series of a triangle surface: <base>_<step>.vtp files and their own <base>.pvd.
+/// Written with VTK's XML writer (this file's .cpp includes VTK; a build without VTK has none).
+#include "PvdSeries.h"
+#include "fascia/base/Component.h"
+
+#include <string>
+#include <vector>
+
+namespace fascia::meshio {
+
+/// One frame of a surface: its points, triangles indexing them, and point arrays of 3 components.
+struct SurfaceFrame {
+    const Positions* points = nullptr;
+    const Triangles* triangles = nullptr;
+    struct Array {
+        const char* name;
+        const Positions* values;  ///< one per point
+    };
+    std::vector<Array> arrays;
+    const IndexList* nodeIds = nullptr;  ///< optional integer point array "nodeId" (the body's node of each point)
+};
+
+class SurfaceSeries {
+public:
+    /// Starts the series <outputDir>/<base>.pvd for `owner` (which claims the file, so that two
+    /// components cannot write one series), removing the temporaries a killed run left.
+    /// compression: "lz4", "zlib" or "none".
+    void start(const core::Component& owner, const std::string& base, const std::string& compression);
+    /// Writes <base>_<step>.vtp (through a temporary file and a rename) and lists it in the .pvd.
+    void write(double t, long step, const SurfaceFrame& frame);
+    /// Completes the .pvd (end of the run).
+    void finish() { m_pvd.finish(); }
+    bool started() const { return !m_base.empty(); }
+    long lastStep() const { return m_lastStep; }
+
+private:
+    const core::Component* m_owner = nullptr;
+    std::string m_dir, m_base, m_compression;
+    PvdSeries m_pvd;
+    long m_lastStep = -1;
+};
+
+} // namespace fascia::meshio

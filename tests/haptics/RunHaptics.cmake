@@ -1,0 +1,36 @@
+# cmake -DDEMO=<fascia-haptics-demo> -DSCENE=<scene> -DWORK=<folder> -P RunHaptics.cmake
+# Runs the haptics example for 0.3 s (300 device ticks at 1 kHz) and checks what it wrote: exit code 0,
+# the CSV header and exactly one row per tick, every value a finite number, and each summary line.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+execute_process(COMMAND ${DEMO} ${SCENE} --seconds 0.3 --output ${WORK}/force.csv
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 100)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "fascia-haptics-demo exited with ${rc}:\n${out}\n${err}")
+endif()
+foreach(key device_ticks device_rate_hz interval_p50_ms interval_p99_ms intervals_under_1.5ms simulation_steps
+            simulation_update_rate_hz simulated_s real_time_factor step_real_time_factor peak_force_n)
+  if(NOT out MATCHES "(^|\n)${key}=([-+0-9.eE]+)\n")
+    message(FATAL_ERROR "the summary has no number for ${key}:\n${out}")
+  endif()
+endforeach()
+if(NOT out MATCHES "device_ticks=300\n")
+  message(FATAL_ERROR "expected 300 device ticks:\n${out}")
+endif()
+file(STRINGS ${WORK}/force.csv rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 301)
+  message(FATAL_ERROR "force.csv has ${n} lines, expected a header and 300 rows")
+endif()
+list(GET rows 0 header)
+if(NOT header STREQUAL "time_s,interval_ms,force_x,force_y,force_z,device_x,device_y,device_z,tool_updates")
+  message(FATAL_ERROR "unexpected header: ${header}")
+endif()
+list(REMOVE_AT rows 0)
+set(number "[-+.0-9e]+")  # digits, sign, point, exponent: no nan or inf
+foreach(row ${rows})
+  if(NOT row MATCHES "^${number},${number},${number},${number},${number},${number},${number},${number},[0-9]+$")
+    message(FATAL_ERROR "a row that is not 9 finite numbers: ${row}")
+  endif()
+endforeach()
+message(STATUS "${out}")
