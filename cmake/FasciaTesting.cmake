@@ -1,5 +1,7 @@
-# fascia_add_test(NAME <name> SOURCES <files...> [LIBS <targets...>])
-#   One Catch2 executable in build/bin/tests, its test cases registered one by one with ctest.
+# fascia_add_test(NAME <name> SOURCES <files...> [LIBS <targets...>] [PROPERTIES <name value...>])
+#   One Catch2 executable in build/bin/tests, its test cases registered one by one with ctest
+#   (PROPERTIES: more ctest properties of every case, e.g. SKIP_RETURN_CODE 77 for a case that
+#   exits 77 where it cannot run, so that ctest reports it skipped, never passed).
 # fascia_add_script_test(NAME <name> COMMAND <command...> [PROPERTIES <name value...>])
 #   One ctest entry that is no Catch2 case (a CMake script, a shell script, a program).
 #
@@ -20,7 +22,7 @@ set_property(GLOBAL PROPERTY FASCIA_CATCH_TESTS "")
 set_property(GLOBAL PROPERTY FASCIA_SCRIPT_TESTS "")
 
 function(fascia_add_test)
-  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;PROPERTIES" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE fascia_catch_main fascia_core fascia_flags ${T_LIBS})
   target_compile_definitions(${T_NAME} PRIVATE
@@ -31,7 +33,8 @@ function(fascia_add_test)
                        EXTRA_ARGS -w NoTests
                        PROPERTIES TIMEOUT 300
                                   ENVIRONMENT "FASCIA_PARAM_LOG=${PROJECT_BINARY_DIR}/Testing/param-coverage.log"
-                                  FIXTURES_REQUIRED fascia_param_log)
+                                  FIXTURES_REQUIRED fascia_param_log
+                                  ${T_PROPERTIES})
   set_property(GLOBAL APPEND PROPERTY FASCIA_CATCH_TESTS $<TARGET_FILE:${T_NAME}>)
 endfunction()
 

@@ -65,6 +65,11 @@ void PluginManager::loadDefaultPlugins() {
                             {"set FASCIA_PLUGIN_PATH to a colon-separated list of folders holding plugins"});
         for (auto& f : sharedLibrariesIn(d)) loadFile(f);
     }
+    // the GPU step is a plugin that builds without the CUDA toolkit leave out: say so where a scene asks for it
+    if (!Registry::instance().find("CudaStep"))
+        Registry::instance().addKnownElsewhere(
+            "CudaStep", "CudaStep is the cuda plugin's (fascia.cuda), which this build does not have: it is built only where "
+                        "CMake finds the CUDA toolkit (option FASCIA_WITH_CUDA); without it the scene runs on the CPU");
 }
 
 const LoadedPlugin& PluginManager::load(const std::string& name, const SourceLoc& loc,

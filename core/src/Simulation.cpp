@@ -132,6 +132,25 @@ struct InitOrder {
     }
 };
 
+/// The step backend (BaseStepBackend, e.g. the cuda plugin's CudaStep) takes over every group: at
+/// most one, and in the root node only, so that the device is chosen in one place.
+void adoptBackend(const Node& root, const std::vector<Component*>& all, std::vector<MechanicalGroup>& groups) {
+    BaseStepBackend* backend = nullptr;
+    for (Component* c : all)
+        if (auto* b = dynamic_cast<BaseStepBackend*>(c)) {
+            if (c->node() != &root)
+                c->fail("a step backend must be in the root node: it runs the step of every body",
+                        {"move it to the root node"});
+            if (backend) c->fail("a second step backend: " + backend->className() + " '" + backend->name() + "' is one already");
+            backend = b;
+        }
+    if (!backend) return;
+    for (auto& g : groups) {
+        backend->adopt(g);
+        g.backend = backend;
+    }
+}
+
 } // namespace
 
 void Simulation::init() {
@@ -199,6 +218,7 @@ void Simulation::init() {
             g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
         checkConstraintConflicts(g);
     }
+    adoptBackend(*m_root, m_all, m_groups);
 
     // time step
     const TimeStep& ts = m_root->dt.get();
@@ -356,7 +376,10 @@ void Simulation::advance(double end) {
         for (Component* c : m_all) c->beginStep(m_time, m_dt);
         for (auto& g : m_groups) {
             g.stepIndex = m_step + 1;
-            {
+            if (g.backend) {
+                ScopedTimer t(g.backend->timer());
+                g.backend->step(g, m_time, m_dt);
+            } else {
                 ScopedTimer t(g.integrator->timer());
                 g.integrator->step(g, m_time, m_dt);
             }

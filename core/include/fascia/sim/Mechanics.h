@@ -229,6 +229,8 @@ public:
     virtual void observeFinal(double t, long step) {}
 };
 
+class BaseStepBackend;
+
 /// A triangle surface that moves with a body, updated after every step as an observer: a finer
 /// visual surface mapped onto the body (meshio's BarycentricSurfaceMapping). Read it between steps
 /// through Simulation::surface. Storage lives here so that readers need no plugin header.
@@ -288,6 +290,24 @@ struct MechanicalGroup {
     double kineticMax = 0;       ///< its largest value over the earlier steps (J)
     int kineticGrowth = 0;       ///< consecutive steps it grew past kGrowthFactor kineticMax
     std::vector<double> chunkSums; ///< scratch of checkStep: per chunk of nodes, the finite probe and the energy
+    /// Runs the group's whole step instead of the integrator (a GPU backend, BaseStepBackend), or
+    /// null. The integrator still gives the group's stable time step and its parameters. (Last, so
+    /// that the members plugins built before it read keep their offsets.)
+    BaseStepBackend* backend = nullptr;
+};
+
+/// Runs whole steps of mechanical groups elsewhere than in the integrators' host loops (the cuda
+/// plugin's CudaStep: forces, constraints and the update on a GPU). At most one, in the root node,
+/// so that the device is chosen in one place (docs/design.md, section 4.7). After the groups are
+/// assembled and their masses summed, Simulation::init calls adopt() for each group; a backend that
+/// cannot run a component of the group fails located at that component (never a silent fallback
+/// to the host). Then step() replaces integrator->step() for that group; on return the state's x and
+/// v hold the new state (the finite check and the observers read them). The integrator stays the
+/// group's: it still gives the stable time step, and its parameters say what to run.
+class BaseStepBackend : public Component {
+public:
+    virtual void adopt(MechanicalGroup& group) = 0;
+    virtual void step(MechanicalGroup& group, double t, double dt) = 0;
 };
 
 } // namespace fascia::core

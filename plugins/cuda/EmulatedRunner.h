@@ -1,0 +1,52 @@
+#pragma once
+/// The device step on the CPU: the kernel bodies of StepKernels.h called in loops, one call per
+/// element or node, over "device" arrays that are host vectors uploaded (copied) from the same
+/// StepArraysHost the GPU path copies to the device. Slow (no vectorisation, one thread): for tests.
+#include "StepRunner.h"
+#include "fascia/cuda/StepKernels.h"
+
+namespace fascia::cuda {
+
+template <class Law, class T>
+class EmulatedRunner final : public StepRunner {
+public:
+    EmulatedRunner(const StepSetup& s, const Law& law) : m_dev(toArrays<T>(s)) {
+        m_p.law = law;
+        m_p.J0 = static_cast<T>(s.J0);
+        m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
+        m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+    }
+    void setState(const std::vector<double>& u, const std::vector<double>& v) override {
+        m_dev.u.assign(u.begin(), u.end());
+        m_dev.v.assign(v.begin(), v.end());
+    }
+    void getState(std::vector<double>& u, std::vector<double>& v) override {
+        u.assign(m_dev.u.begin(), m_dev.u.end());
+        v.assign(m_dev.v.begin(), m_dev.v.end());
+    }
+    void elementPass() override {
+        const StepArrays<T> d = m_dev.view();
+        for (int e = 0; e < d.nTets; ++e) elementForces(d, m_p, e);
+    }
+    void nodePass(const NodeParams<double>& p) override {
+        const StepArrays<T> d = m_dev.view();
+        const NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
+        for (int n = 0; n < d.nNodes; ++n) nodeStep(d, q, n);
+    }
+    void internalForces(std::vector<double>& f) override {
+        const StepArrays<T> d = m_dev.view();
+        f.resize(3 * static_cast<size_t>(d.nNodes));
+        for (int n = 0; n < d.nNodes; ++n) {
+            const elements::Vec33<T> g = gatherForce(d, n);
+            f[3 * static_cast<size_t>(n)] = g.x;
+            f[3 * static_cast<size_t>(n) + 1] = g.y;
+            f[3 * static_cast<size_t>(n) + 2] = g.z;
+        }
+    }
+
+private:
+    StepArraysHost<T> m_dev;  ///< the "device" copy
+    ElementParams<Law, T> m_p;
+};
+
+} // namespace fascia::cuda

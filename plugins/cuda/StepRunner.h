@@ -1,0 +1,43 @@
+#pragma once
+/// One device step's data and launches: on a GPU (CudaRunner.cu) or emulated on the CPU
+/// (EmulatedRunner.h), both built from the same StepSetup and its StepArraysHost, so the emulation
+/// checks the layout, the indexing and the host-side setup the GPU runs.
+#include "StepSetup.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fascia::cuda {
+
+class StepRunner {
+public:
+    virtual ~StepRunner() = default;
+    /// Uploads displacements u = x - X and velocities (3 per node, double).
+    virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
+    /// Downloads them.
+    virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
+    /// The element kernel over every tetrahedron.
+    virtual void elementPass() = 0;
+    /// The node kernel over every node (after an element pass).
+    virtual void nodePass(const NodeParams<double>& p) = 0;
+    /// The internal nodal forces of the last element pass, each node's slots summed (3 per node;
+    /// for tests).
+    virtual void internalForces(std::vector<double>& f) = 0;
+};
+
+/// Which scalar the device step computes in.
+enum class Precision { Double, Float };
+
+/// The emulated runner of s's law (s.material in DeviceMaterials) in precision p.
+std::unique_ptr<StepRunner> makeEmulatedRunner(const StepSetup& s, Precision p);
+
+/// The same on the GPU, threads per block `block`. Throws a core::Error naming the CUDA error when
+/// an allocation, copy or launch fails.
+std::unique_ptr<StepRunner> makeCudaRunner(const StepSetup& s, Precision p, int block);
+
+/// The number of usable CUDA devices (0 when none); `why` says why there is none (the CUDA error
+/// of cudaGetDeviceCount, or "no CUDA device"), and names device 0 otherwise.
+int cudaDevices(std::string& why);
+
+} // namespace fascia::cuda

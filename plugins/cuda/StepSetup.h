@@ -1,0 +1,117 @@
+#pragma once
+/// Host-side setup of the device step, shared by the GPU path and its CPU emulation: what a
+/// mechanical group holds, checked against what the device step can run, turned into the arrays
+/// of StepLayout.h (once, at init), and the per-step parameters.
+#include "fascia/cuda/StepLayout.h"
+#include "fascia/materials/Material.h"
+#include "fascia/sim/Mechanics.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fascia::cuda {
+
+/// Everything the kernels read, in double and in the layout of StepArrays (see there), built once
+/// from a group by buildStepSetup.
+struct StepSetup {
+    int nTets = 0, nNodes = 0;
+    std::vector<int> tet;
+    std::vector<double> dN, vol;
+    std::vector<int> slotStart;
+    std::vector<std::uint32_t> slots;
+    std::vector<double> ext, mass, invMass;
+    std::vector<std::uint8_t> fixed;
+    const materials::BaseMaterial* material = nullptr;  ///< the elements' one material
+    double J0 = 0.4;
+    elements::Vec33<double> a0{1, 0, 0}, b0{0, 1, 0};  ///< the material's fibre directions
+    double damping = 0;                                ///< SemiImplicitEuler's alpha
+    bool halfStepStart = true;                         ///< SemiImplicitEuler's leapfrog start
+};
+
+/// Checks that the device step can run every component of the group (one TLEDForceField on
+/// tetrahedra with one built-in law of DeviceLaws.h, FixedConstraint, ConstantForce without a
+/// curve, LumpedMass, SemiImplicitEuler) and builds its arrays. Anything else is a located error at
+/// the component, raised through owner's message style when the component has no location of its
+/// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
+StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g);
+
+/// The slot lists of a tetrahedral mesh (tet as in StepArrays): slotStart (nNodes + 1) and slots.
+void buildSlots(int nTets, int nNodes, const std::vector<int>& tet, std::vector<int>& slotStart, std::vector<std::uint32_t>& slots);
+
+/// The arrays of a setup in the scalar T, as host vectors (what an upload copies to the device;
+/// the emulation's "device" copy is a second set of them).
+template <class T>
+struct StepArraysHost {
+    int nTets = 0, nNodes = 0;
+    std::vector<int> tet, slotStart;
+    std::vector<std::uint32_t> slots;
+    std::vector<T> dN, vol, ef, ext, mass, invMass, u, v;
+    std::vector<std::uint8_t> fixed;
+
+    /// The StepArrays over these vectors.
+    StepArrays<T> view() {
+        StepArrays<T> d;
+        d.nTets = nTets;
+        d.nNodes = nNodes;
+        d.tet = tet.data();
+        d.dN = dN.data();
+        d.vol = vol.data();
+        d.ef = ef.data();
+        d.slotStart = slotStart.data();
+        d.slots = slots.data();
+        d.ext = ext.data();
+        d.mass = mass.data();
+        d.invMass = invMass.data();
+        d.fixed = fixed.data();
+        d.u = u.data();
+        d.v = v.data();
+        return d;
+    }
+};
+
+/// The arrays of s converted to T, with u and v zero.
+template <class T>
+StepArraysHost<T> toArrays(const StepSetup& s) {
+    const auto conv = [](const std::vector<double>& a) { return std::vector<T>(a.begin(), a.end()); };
+    StepArraysHost<T> h;
+    h.nTets = s.nTets;
+    h.nNodes = s.nNodes;
+    h.tet = s.tet;
+    h.slotStart = s.slotStart;
+    h.slots = s.slots;
+    h.dN = conv(s.dN);
+    h.vol = conv(s.vol);
+    h.ef.assign(12 * static_cast<size_t>(s.nTets), T(0));
+    h.ext = conv(s.ext);
+    h.mass = conv(s.mass);
+    h.invMass = conv(s.invMass);
+    h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));
+    h.v.assign(3 * static_cast<size_t>(s.nNodes), T(0));
+    h.fixed = s.fixed;
+    return h;
+}
+
+/// Tracks SemiImplicitEuler's velocity kick across steps as SemiImplicitEuler::step does: dt/2 on
+/// the first step with halfStepStart, then (dt_old + dt)/2 (dt without halfStepStart).
+struct KickRule {
+    bool halfStepStart = true;
+    bool started = false;
+    double lastDt = 0;
+    double next(double dt) {
+        double kick = dt;
+        if (!started) {
+            started = true;
+            if (halfStepStart) kick = 0.5 * dt;
+        } else if (halfStepStart) {
+            kick = 0.5 * (lastDt + dt);
+        }
+        lastDt = dt;
+        return kick;
+    }
+};
+
+/// The node kernel's parameters of the step from t to t + dt in double (g(t) with the group's
+/// gravity curve).
+NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s, double t, double dt, double kick);
+
+} // namespace fascia::cuda

@@ -1,0 +1,61 @@
+#pragma once
+/// The data layout of the device step (docs/design.md, section 4.7): every array of the mesh as a
+/// plain pointer, structure of arrays over the whole mesh, so that consecutive threads (elements,
+/// nodes) read consecutive addresses. The GPU path (CudaRunner.cu) and the CPU emulation
+/// (EmulatedRunner.h) both fill it from the same host arrays (StepArraysHost, StepSetup.h) and run the
+/// same kernel bodies over it (StepKernels.h).
+#include "fascia/elements/Tensor3.h"
+
+#include <cstdint>
+
+namespace fascia::cuda {
+
+/// The arrays of one step, scalar T (float or double). Element e, corner a (0..3), component i:
+///   tet[a nTets + e]             node of corner a
+///   dN[(3 (a-1) + i) nTets + e]  dN_a/dX_i for a = 1..3 (dN_0 = -(dN_1 + dN_2 + dN_3))
+///   vol[e]                       rest volume
+///   ef[(3 a + i) nTets + e]      the element's force on its corner a (written by the element
+///                                kernel, each element to its own slots: no atomics)
+/// Node n, component i:
+///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 4 e + a, by element
+///                                then corner: the fixed order of the sum (docs/design.md, principle 5)
+///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
+///                                formed from displacements, accurate in float; lesson 6)
+///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
+///   fixed[n]                     held axes, bit i for axis i (FixedConstraint)
+template <class T>
+struct StepArrays {
+    int nTets = 0, nNodes = 0;
+    const int* tet = nullptr;
+    const T* dN = nullptr;
+    const T* vol = nullptr;
+    T* ef = nullptr;
+    const int* slotStart = nullptr;
+    const std::uint32_t* slots = nullptr;
+    const T* ext = nullptr;
+    const T* mass = nullptr;
+    const T* invMass = nullptr;
+    const std::uint8_t* fixed = nullptr;
+    T* u = nullptr;
+    T* v = nullptr;
+};
+
+/// What the element kernel needs besides the arrays: the law (by value, its parameters as the
+/// material holds them), J0 and the fibre directions of the material (one per mesh).
+template <class Law, class T>
+struct ElementParams {
+    Law law;
+    T J0;
+    elements::Vec33<T> a0, b0;
+};
+
+/// The node kernel's step: g(t) (gravity, scaled by its curve), dt, the velocity kick of this step
+/// (dt, or dt/2 on the first step of the leapfrog start) and the damping alpha
+/// (SemiImplicitEuler, HEML eq. (32)).
+template <class T>
+struct NodeParams {
+    T g[3];
+    T dt, kick, alpha;
+};
+
+} // namespace fascia::cuda

@@ -1,0 +1,136 @@
+#pragma once
+// Helpers for the cuda plugin's tests (the CPU emulation and the device tests): scenes of a small
+// cantilever (a 2 x 2 x 3 cell box of tetrahedra, fixed at z = 0, pulled at z = 0.03, under gravity)
+// with each law of the device step, the forces of TLEDForceField at a deformed state, and the
+// arrays the device step builds for them.
+#include "StepRunner.h"
+
+#include "fascia/sim/Simulation.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace cudatest {
+
+namespace core = fascia::core;
+namespace cuda = fascia::cuda;
+using fascia::Positions;
+using fascia::Vec3;
+
+/// A law of the device step with moderate parameters (soft tissue, kPa), as its XML element.
+struct Law {
+    std::string name, element;
+};
+
+inline std::vector<Law> deviceLaws() {
+    return {{"NeoHookean", "<NeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\"/>"},
+            {"CompressibleNeoHookean", "<CompressibleNeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.4\"/>"},
+            {"TransverselyIsotropic",
+             "<TransverselyIsotropic name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\" eta=\"6000\" direction=\"1 1 2\"/>"}};
+}
+
+/// The cantilever scene; `root` goes into the root node (a CudaStep), `body` into the body's node.
+inline std::string scene(const Law& law, const std::string& root, const std::string& body = "",
+                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>") {
+    return "<Node name=\"root\" dt=\"2e-5\" gravity=\"0 -9.81 0\" gravityCurve=\"linear 0 1 0.004 0.5\">\n" + root +
+           "\n  <Node name=\"body\">\n"
+           "    <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"tetrahedra6\"/>\n"
+           "    <MechanicalObject name=\"mo\"/>\n"
+           "    <LumpedMass density=\"1000\"/>\n    " +
+           integrator + "\n    " + law.element +
+           "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"/>\n"
+           "    <FixedConstraint name=\"clamp\" indices=\"0 1 2 3 4 5 6 7 8\"/>\n"
+           "    <FixedConstraint name=\"roller\" indices=\"12 13\" directions=\"1 0 0\"/>\n"
+           "    <ConstantForce name=\"pull\" indices=\"27 28 29 30 31 32 33 34 35\" force=\"0.002 0.001 0.004\"/>\n" +
+           body + "\n  </Node>\n</Node>\n";
+}
+
+/// Deforms the state: x = A X + a jitter (seeded), v = 0.
+inline void deform(core::BaseMechanicalState& mo, double scale) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> r(-1, 1);
+    fascia::Mat3 A;
+    A << 1 + 0.1 * scale, 0.05 * scale, -0.02 * scale, 0.03 * scale, 1 - 0.08 * scale, 0.04 * scale, -0.06 * scale, 0.02 * scale,
+        1 + 0.12 * scale;
+    for (size_t i = 0; i < mo.size(); ++i) mo.x()[i] = A * mo.x0()[i] + 4e-4 * scale * Vec3(r(rng), r(rng), r(rng));
+}
+
+/// u = x - X and v of a state, 3 per node.
+inline void stateArrays(const core::BaseMechanicalState& mo, std::vector<double>& u, std::vector<double>& v) {
+    u.resize(3 * mo.size());
+    v.resize(3 * mo.size());
+    for (size_t i = 0; i < mo.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            u[3 * i + size_t(c)] = mo.x()[i][c] - mo.x0()[i][c];
+            v[3 * i + size_t(c)] = mo.v()[i][c];
+        }
+}
+
+/// A number in scientific notation, for CAPTURE (Catch prints small doubles as 0.0).
+inline std::string sci(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", x);
+    return b;
+}
+
+/// max_i |a_i - b_i| / max_i |b_i| over 3-vectors (b as Positions, a flat).
+inline double relativeError(const std::vector<double>& a, const Positions& b) {
+    double num = 0, den = 0;
+    for (size_t i = 0; i < b.size(); ++i) {
+        const Vec3 d(a[3 * i] - b[i][0], a[3 * i + 1] - b[i][1], a[3 * i + 2] - b[i][2]);
+        num = std::max(num, d.norm());
+        den = std::max(den, b[i].norm());
+    }
+    return num / den;
+}
+
+/// The forces of TLEDForceField 'ff' at a deformed state, and the device step's setup of the scene.
+struct ForceProbe {
+    std::unique_ptr<core::Simulation> sim;
+    Positions f;               ///< TLED's internal forces
+    std::vector<double> u, v;  ///< the deformed state as the device step takes it
+    cuda::StepSetup setup;
+};
+
+inline ForceProbe probeForces(const Law& law, double scale) {
+    ForceProbe p;
+    p.sim = core::Simulation::fromString(scene(law, ""));
+    p.sim->init();
+    auto& mo = p.sim->state("mo");
+    deform(mo, scale);
+    auto* ff = dynamic_cast<core::BaseForceField*>(p.sim->find("ff"));
+    REQUIRE(ff);
+    p.f.assign(mo.size(), Vec3::Zero());
+    ff->addForce(mo, p.f, 0);
+    stateArrays(mo, p.u, p.v);
+    p.setup = cuda::buildStepSetup(*ff, p.sim->groups().at(0));
+    return p;
+}
+
+/// Positions after `steps` steps of the scene with `root` in its root node.
+inline Positions trajectoryEnd(const Law& law, const std::string& root, int steps) {
+    auto sim = core::Simulation::fromString(scene(law, root));
+    sim->init();
+    for (int s = 0; s < steps; ++s) sim->step();
+    return sim->state("mo").x();
+}
+
+/// max_i |x_i - y_i| / max_i |y_i - X_i|: a trajectory's end against a reference, relative to the
+/// reference's displacement.
+inline double displacementError(const Positions& x, const Positions& y, const Positions& X) {
+    double num = 0, den = 0;
+    for (size_t i = 0; i < y.size(); ++i) {
+        num = std::max(num, (x[i] - y[i]).norm());
+        den = std::max(den, (y[i] - X[i]).norm());
+    }
+    return num / den;
+}
+
+} // namespace cudatest

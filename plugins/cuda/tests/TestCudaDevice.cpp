@@ -1,0 +1,87 @@
+// The device step through real CUDA launches, against TLEDForceField and SemiImplicitEuler as the
+// emulation test checks its kernel bodies on the CPU. Where no device is usable every case exits 77,
+// which ctest reports as skipped (SKIP_RETURN_CODE, plugins/cuda/CMakeLists.txt), never as passed.
+#include "CudaTestSupport.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+using namespace cudatest;
+
+namespace {
+
+/// Exits 77 (skipped) when there is no usable CUDA device.
+void requireDevice() {
+    std::string why;
+    if (cuda::cudaDevices(why) == 0) {
+        std::printf("skipped: %s\n", why.c_str());
+        std::fflush(stdout);
+        std::exit(77);
+    }
+}
+
+} // namespace
+
+TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "[CudaStep]") {
+    requireDevice();
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const double scale = GENERATE(0.3, 1.0, 3.0);
+    const bool useFloat = GENERATE(false, true);
+    CAPTURE(law.name, scale, useFloat);
+    ForceProbe p = probeForces(law, scale);
+    auto runner = cuda::makeCudaRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double, 128);
+    runner->setState(p.u, p.v);
+    runner->elementPass();
+    std::vector<double> f;
+    runner->internalForces(f);
+    const double err = relativeError(f, p.f);
+    CAPTURE(sci(err));
+    CHECK(err <= (useFloat ? 1e-5 : 1e-12));
+}
+
+TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[CudaStep]") {
+    requireDevice();
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(law.name, precision);
+    const int steps = 1000;
+    auto ref = core::Simulation::fromString(scene(law, ""));
+    ref->init();
+    for (int s = 0; s < steps; ++s) ref->step();
+    const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps);
+    const auto& mo = ref->state("mo");
+    const double err = displacementError(x, mo.x(), mo.x0());
+    CAPTURE(sci(err));
+    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+}
+
+TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory for any block size", "[CudaStep]") {
+    requireDevice();
+    const Law law = deviceLaws()[2];
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    const auto run = [&](int block) {
+        return trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\" blockSize=\"" + std::to_string(block) + "\"/>", 200);
+    };
+    const Positions a = run(256);
+    for (int block : {32, 96, 1024}) {
+        CAPTURE(block);
+        const Positions b = run(block);
+        bool same = true;
+        for (size_t i = 0; i < a.size(); ++i) same = same && a[i] == b[i];
+        CHECK(same);
+    }
+}
+
+TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "[CudaStep]") {
+    requireDevice();
+    const Law law = GENERATE(from_range(deviceLaws()));
+    CAPTURE(law.name);
+    const Positions gpu = trajectoryEnd(law, "<CudaStep/>", 300);
+    const Positions emu = trajectoryEnd(law, "<CudaStep emulate=\"true\"/>", 300);
+    auto ref = core::Simulation::fromString(scene(law, ""));
+    ref->init();
+    const double err = displacementError(gpu, emu, ref->state("mo").x0());
+    CAPTURE(sci(err));
+    CHECK(err <= 1e-11);
+}
