@@ -20,6 +20,14 @@ public:
     /// Rewrites the index when it lacks files (end of the run).
     void finish();
     size_t size() const { return m_written.size(); }
+    /// The files so far (time, file name), for a checkpoint; restore() puts them back after a restart,
+    /// the index on disk taken as listing them (it is rewritten with the next file).
+    const std::vector<std::pair<double, std::string>>& files() const { return m_written; }
+    void restore(std::vector<std::pair<double, std::string>> files) {
+        m_written = std::move(files);
+        m_listed = m_written.size();
+        m_lastWrite = 0;
+    }
     const std::string& path() const { return m_path; }
 
 private:

@@ -235,7 +235,7 @@ void VTKExporter::writeStep(double t, long step) {
 void VTKExporter::saveState(core::StateWriter& out) const {
     std::vector<double> times;
     std::string names;
-    for (const auto& [t, f] : m_written) times.push_back(t), names += f + "\n";
+    for (const auto& [t, f] : m_pvd.files()) times.push_back(t), names += f + "\n";
     out.put("times", times);
     out.put("files", names);
     out.put("lastStep", m_lastStep);
@@ -245,17 +245,16 @@ void VTKExporter::restoreState(core::StateReader& in) {
     const std::vector<double> times = in.getDoubles("times");
     const std::string names = in.getText("files");
     m_lastStep = in.getLong("lastStep");
-    m_written.clear();
+    std::vector<std::pair<double, std::string>> written;
     std::istringstream lines(names);
-    for (std::string f; std::getline(lines, f);) m_written.emplace_back(0.0, f);
-    if (m_written.size() != times.size())
-        in.fail("[" + path() + "] the checkpoint lists " + std::to_string(m_written.size()) + " files and " +
+    for (std::string f; std::getline(lines, f);) written.emplace_back(0.0, f);
+    if (written.size() != times.size())
+        in.fail("[" + path() + "] the checkpoint lists " + std::to_string(written.size()) + " files and " +
                 std::to_string(times.size()) + " times");
-    for (size_t k = 0; k < times.size(); ++k) m_written[k].first = times[k];
-    m_listed = m_written.size();  // the .pvd is rewritten with the next file
-    m_lastCollection = 0;
+    for (size_t k = 0; k < times.size(); ++k) written[k].first = times[k];
+    m_pvd.restore(written);  // the .pvd is rewritten with the next file
     std::error_code ec;
-    for (const auto& [t, f] : m_written)
+    for (const auto& [t, f] : written)
         if (!fs::exists(fs::path(node()->context().outputDir) / f, ec)) {
             warn("the series of the checkpoint has '" + f + "', which is not in the output folder '" +
                  node()->context().outputDir + "': the .pvd will list it (restart into the output folder of the run "
