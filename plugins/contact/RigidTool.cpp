@@ -52,6 +52,7 @@ void RigidTool::initContact() {
     m_contact.assign(n, Vec3::Zero());
     m_slip.assign(n, 0);
     m_slipDir.assign(n, Vec3::Zero());
+    m_anchor.assign(n, Vec3::Zero());
     m_active.clear();
     m_poseTime = m_prevTime = node()->context().time;
     m_pose = m_prevPose = m_hasSet ? m_set : m_motion.at(m_poseTime);
@@ -128,6 +129,7 @@ void RigidTool::projectForces(core::BaseMechanicalState& s) {
             if (speed <= restSpeed && ftn <= m_muS * N) {
                 c -= ft;  // sticks: the tangential force is held
                 m_slip[i] = 1;
+                m_anchor[i] = m_pose.orientation.conjugate() * (x[i] - m_pose.position);
             } else {
                 const Vec3 dir = speed > restSpeed ? Vec3(vt / speed) : ftn > 0 ? Vec3(ft / ftn) : Vec3::Zero();
                 c -= m_muK * N * dir;  // slides: kinetic friction against the motion
@@ -162,12 +164,20 @@ void RigidTool::projectPositions(core::BaseMechanicalState& s, double t) {
         const size_t i = size_t(k);
         Vec3 n;
         const double d = distanceWorld(x[i], n);
-        if (!(d < 0)) continue;
-        x[i] -= d * n;  // onto the closest surface point
+        Vec3 dx = Vec3::Zero();
+        if (m_slip[i] == 1) {
+            // a sticking node stays on its point of the tool: it moves with the tool over the step
+            // whatever else the integrator did to it (mass damping, say, slows it against the tool)
+            const Vec3 slide = m_pose.position + m_pose.orientation * m_anchor[i] - x[i];
+            dx = slide - slide.dot(n) * n;
+        }
+        if (d < 0) dx -= d * n;  // onto the closest surface point
+        if (dx.isZero()) continue;
+        x[i] += dx;
         // the force that gives this correction over the step, m dx / dt^2 (central difference's
         // update): the impulse of a node that reached the tool during the step
         const double m = mass && i < mass->size() ? (*mass)[i] : 0.0;
-        const Vec3 c = (-d * m * perDt2) * n;
+        const Vec3 c = (m * perDt2) * dx;
         if (c.isZero()) continue;
         if (m_contact[i].isZero()) m_active.push_back(k);
         m_contact[i] += c;

@@ -91,6 +91,7 @@ private:
     std::vector<int> m_active;           ///< nodes with a contact force, in order
     std::vector<signed char> m_slip;     ///< per node: 1 sticking, 2 sliding (at the last force evaluation)
     Positions m_slipDir;                 ///< per node: the sliding direction (world, unit)
+    Positions m_anchor;                  ///< per sticking node: its point in the tool's frame at the step's start
     std::vector<int> m_scratch;
 };
 
