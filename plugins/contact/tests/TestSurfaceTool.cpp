@@ -49,7 +49,7 @@ void checkAgainstExact(const Voxels& shape, int resolution, int count) {
     int near = 0;
     for (int q = 0; q < count; ++q) {
         Vec3 p = lo + span.cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
-        if (q % 2) {  // half the points within a cell of the surface: a random surface point, moved off along a random direction
+        if (q % 2) {  // half the points within half a cell of the surface: a random surface point, moved off along a random direction
             const auto& t = m.triangles[size_t(q / 2) % m.triangles.size()];
             const double a = u(rng), b = u(rng) * (1 - a);
             const Vec3 s = m.points[size_t(t[0])] + a * (m.points[size_t(t[1])] - m.points[size_t(t[0])]) +
