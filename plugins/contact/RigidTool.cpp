@@ -79,10 +79,20 @@ void RigidTool::candidates(const core::BaseMechanicalState& s, std::vector<int>&
         out = m_surface;
         return;
     }
+    // the local box's world box at this pose (its 8 corners turned): a node outside it costs six
+    // comparisons, no rotation
+    Vec3 wlo = Vec3::Constant(std::numeric_limits<double>::infinity()), whi = -wlo;
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner((c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]);
+        const Vec3 w = m_pose.position + m_pose.orientation * corner;
+        wlo = wlo.cwiseMin(w), whi = whi.cwiseMax(w);
+    }
     const Eigen::Quaterniond inv = m_pose.orientation.conjugate();
     const Positions& x = s.x();
     for (int i : m_surface) {
-        const Vec3 l = inv * (x[size_t(i)] - m_pose.position);
+        const Vec3& xi = x[size_t(i)];
+        if (xi[0] < wlo[0] || xi[0] > whi[0] || xi[1] < wlo[1] || xi[1] > whi[1] || xi[2] < wlo[2] || xi[2] > whi[2]) continue;
+        const Vec3 l = inv * (xi - m_pose.position);
         if ((l.array() >= lo.array()).all() && (l.array() <= hi.array()).all()) out.push_back(i);
     }
 }

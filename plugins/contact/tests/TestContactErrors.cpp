@@ -1,6 +1,10 @@
 // Located errors for bad tool input: no body, keyframes out of order or of the wrong size, a
-// negative or inconsistent friction coefficient, a shape without direction, an unknown tool name.
+// negative or inconsistent friction coefficient, a shape without direction, an unknown tool name,
+// and a surface tool's mesh: missing, open, non-manifold, flat, or a grid too fine.
 #include "ContactTestSupport.h"
+#include "SurfaceMeshes.h"
+
+#include <algorithm>
 
 using namespace contacttest;
 using Catch::Matchers::Contains;
@@ -54,4 +58,45 @@ TEST_CASE("A shape without a direction or size is a located error", "[PlaneTool]
                Contains("scene.xml:2: error: SphereTool 'ball': radius"));
     CHECK_THAT(errorOf(withTool("<SphereTool name=\"ball\" body=\"@block/state\" radius=\"0.1\" orientation=\"0 0 0 0\"/>")),
                Contains("SphereTool 'ball': the quaternion 0 0 0 0 has no direction"));
+}
+
+TEST_CASE("A surface tool's bad mesh or resolution is a located error", "[SurfaceTool]") {
+    using namespace surfacetest;
+    TempDir dir("errors");
+    const Mesh box = Voxels::box(Vec3(0, 0, 0), Vec3(0.02, 0.02, 0.01), 1, 1, 1).surface();  // 8 vertices, 12 triangles
+    auto tool = [&](const std::string& attrs) { return withTool("<SurfaceTool name=\"probe\" body=\"@block/state\" " + attrs + "/>"); };
+    const std::string good = writeObj(dir.file("box.obj"), box);
+    CHECK(errorOf(tool("mesh=\"" + good + "\"")).empty());
+    CHECK_THAT(errorOf(tool("mesh=\"" + dir.file("nope.obj") + "\"")),
+               Contains("scene.xml:2: error: SurfaceTool 'probe': mesh file '" + dir.file("nope.obj") + "' does not exist"));
+    CHECK_THAT(errorOf(tool("")), Contains("scene.xml:2: error: SurfaceTool 'probe'"));
+    // the last triangle left out: an edge of one of its neighbours has no neighbour across it
+    const std::string e = errorOf(tool("mesh=\"" + writeObj(dir.file("open.obj"), box, 1) + "\""));
+    CHECK_THAT(e, Contains("open.obj:"));
+    CHECK_THAT(e, Contains(": error: the edge between vertices"));
+    CHECK_THAT(e, Contains("has no neighbour across it: the surface is open"));
+    CHECK_THAT(e, Contains("SurfaceTool 'probe' needs a closed, edge-manifold, consistently oriented surface"));
+    CHECK_THAT(e, Contains("read by SurfaceTool 'probe' at scene.xml:2"));
+    // a second closed box sharing one edge of the first (y = z = 0): four triangles on that edge
+    Mesh both = box;
+    const Mesh twin = Voxels::box(Vec3(0, -0.02, -0.01), Vec3(0.02, 0, 0), 1, 1, 1).surface();
+    std::vector<int> id;
+    for (const Vec3& p : twin.points) {
+        const auto at = std::find(box.points.begin(), box.points.end(), p);
+        id.push_back(at != box.points.end() ? int(at - box.points.begin()) : int(both.points.size()));
+        if (at == box.points.end()) both.points.push_back(p);
+    }
+    for (const auto& t : twin.triangles) both.triangles.push_back({id[size_t(t[0])], id[size_t(t[1])], id[size_t(t[2])]});
+    REQUIRE(both.points.size() == 14);
+    CHECK_THAT(errorOf(tool("mesh=\"" + writeObj(dir.file("twin.obj"), both) + "\"")),
+               Contains("is shared by three or more triangles: the surface is not edge-manifold"));
+    // two triangles (lines 24 and 25) on three vertices of a line: closed, but without a normal
+    const std::string flat = writeObj(dir.file("flat.obj"), box, 0, "v 0 0 0.5\nv 0 0 1\nv 0 0 2\nf 9 10 11\nf 9 11 10\n");
+    CHECK_THAT(errorOf(tool("mesh=\"" + flat + "\"")), Contains("flat.obj:24: error: triangle 13 has no area"));
+    // resolutions
+    CHECK_THAT(errorOf(tool("mesh=\"" + good + "\" resolution=\"1\"")), Contains("scene.xml:2: error: SurfaceTool 'probe': resolution"));
+    CHECK_THAT(errorOf(tool("mesh=\"" + good + "\" resolution=\"ten\"")), Contains("scene.xml:2: error: SurfaceTool 'probe': resolution"));
+    CHECK_THAT(errorOf(tool("mesh=\"" + good + "\" resolution=\"1000\"")),
+               Contains("scene.xml:2: error: SurfaceTool 'probe': resolution = 1000 makes a signed distance grid of 1007 x 1007 x 507 nodes ("));
+    CHECK_THAT(errorOf(tool("mesh=\"" + good + "\" resolution=\"1000\"")), Contains("MiB), more than the limit of 256 MiB"));
 }

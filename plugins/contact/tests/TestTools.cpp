@@ -171,9 +171,10 @@ TEST_CASE("Tool force and torque columns of the Monitor are the tool's force and
     fs::remove_all(dir);
 }
 
-TEST_CASE("Every shape takes its pose from position and orientation, a load curve or keyframes", "[PlaneTool][SphereTool][CapsuleTool][ToolMotion]") {
+TEST_CASE("Every shape takes its pose from position and orientation, a load curve or keyframes", "[PlaneTool][SphereTool][CapsuleTool][SurfaceTool][ToolMotion]") {
     const std::string shape = GENERATE(std::string("PlaneTool normal=\"0 0 -1\""), std::string("SphereTool radius=\"0.01\""),
-                                       std::string("CapsuleTool radius=\"0.01\" length=\"0.05\""));
+                                       std::string("CapsuleTool radius=\"0.01\" length=\"0.05\""),
+                                       std::string("SurfaceTool mesh=\"" FASCIA_SOURCE_DIR "/scenes/meshes/probe.obj\" resolution=\"8\""));
     CAPTURE(shape);
     const double h = std::sqrt(0.5);  // a quarter turn about z: w = z = sqrt(1/2)
     auto run = [&](const std::string& pose, int steps) {
