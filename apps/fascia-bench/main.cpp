@@ -1,5 +1,6 @@
 // fascia-bench: times full explicit steps (forces, integration, constraints) of a force field on a
 // mesh and prints one JSON object per case. See `fascia-bench --help`.
+#include "BenchCase.h"
 #include "fascia/sim/Simulation.h"
 
 #include <omp.h>
@@ -41,13 +42,14 @@ usage:
   --repeat R      timed repeats; the median is reported with min and max (default 5)
   --viscous       add a one-term ViscoelasticProny to the force field's node
   --determinism   also run with 1 thread and report whether positions are bitwise identical
-  --suite [heml|tled|scaling]
+  --suite [heml|tled|scaling|contact]
                   the standard sets of docs/performance.md: heml (default: HEML compressible
                   neo-Hookean and Saint Venant-Kirchhoff on the 4.4k and 21k organ meshes and a
                   2M-tetrahedron cube, 1 and 2 threads), tled (TLED neo-Hookean, transversely
                   isotropic and one Prony term on 20k and 200k tetrahedra, hexahedra against
                   tetrahedra; TLED beside HEML on the 21k organ mesh), scaling (HEML and TLED from
-                  20k to 200k tetrahedra)
+                  20k to 200k tetrahedra), contact (HEML and TLED on the 21k organ mesh without
+                  a tool and with a capsule pressed into it and moving every step)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
   --load SCENE    time to parse, build and initialise a scene (ms), median of the repeats
@@ -64,11 +66,7 @@ passes, without the integrator, the other force terms and the checks of a step),
 forcefield_per_element_vs_first beside the step ratios.
 )";
 
-struct Case {
-    std::string forcefield = "HEML", material = "CompressibleNeoHookean", mesh, element = "tetrahedra6";
-    int cube = 0, steps = 200, threads = 2, repeat = 5;
-    bool viscous = false, determinism = false;
-};
+using bench::Case;
 
 std::string materialXml(const std::string& m) {
     std::string attrs = "youngModulus=\"3000\" poissonRatio=\"0.45\"";
@@ -113,7 +111,7 @@ std::string sceneXml(const Case& c) {
     s << "    <SemiImplicitEuler/>\n"
       << "    <BoxROI name=\"base\" box=\"-1e9 -1e9 -1e9 1e9 1e9 " << (c.mesh.empty() ? "0.001" : "-0.04") << "\"/>\n"
       << "    <FixedConstraint indices=\"@base.indices\"/>\n"
-      << "  </Node>\n</Node>\n";
+      << c.bodyExtra << "  </Node>\n</Node>\n";
     return s.str();
 }
 
@@ -136,6 +134,7 @@ std::unique_ptr<Simulation> build(const Case& c, int threads) {
     const double crit = sim->criticalTimeStep();
     if (std::isfinite(crit)) sim->setDt(0.5 * crit);
     deform(sim->state("state"));
+    if (c.settle > 0) sim->run(c.settle);
     return sim;
 }
 
@@ -197,7 +196,7 @@ void runCases(const std::vector<Case>& cs) {
         const Case& c = cs[i];
         const double med = median(ms[i]);
         const auto [fastest, slowest] = std::minmax_element(ms[i].begin(), ms[i].end());
-        std::string extra;
+        std::string extra = c.label.empty() ? "" : ", \"case\": \"" + c.label + "\"";
         char buf[240];
         const double perElement = double(elements[0]) / double(std::max<size_t>(1, elements[i]));
         if (i > 0) {
@@ -396,6 +395,10 @@ int main(int argc, char** argv) {
             runCases(organ);
             return 0;
         }
+        if (suiteName == "contact") {
+            bench::runContactSuite(c, findMesh("organ_21436.msh"), [](const Case& s) { return build(s, s.threads); }, runCases);
+            return 0;
+        }
         if (suiteName == "scaling") {
             for (int cube : {15, 20, 26, 32}) {  // 20k, 48k, 105k, 197k tetrahedra
                 std::vector<Case> group;
@@ -411,7 +414,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (suiteName != "heml") {
-            std::cerr << "fascia-bench: unknown suite '" << suiteName << "' (heml, tled or scaling)\n";
+            std::cerr << "fascia-bench: unknown suite '" << suiteName << "' (heml, tled, scaling or contact)\n";
             return 1;
         }
         for (const char* mat : {"CompressibleNeoHookean", "StVenantKirchhoff"})

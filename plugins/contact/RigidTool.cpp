@@ -79,20 +79,16 @@ void RigidTool::candidates(const core::BaseMechanicalState& s, std::vector<int>&
         out = m_surface;
         return;
     }
-    // the local box's world box at this pose (its 8 corners turned): a node outside it costs six
-    // comparisons, no rotation
-    Vec3 wlo = Vec3::Constant(std::numeric_limits<double>::infinity()), whi = -wlo;
-    for (int c = 0; c < 8; ++c) {
-        const Vec3 corner((c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]);
-        const Vec3 w = m_pose.position + m_pose.orientation * corner;
-        wlo = wlo.cwiseMin(w), whi = whi.cwiseMax(w);
-    }
-    const Eigen::Quaterniond inv = m_pose.orientation.conjugate();
+    // the world axis-aligned box around the tool's box (centre +- |rotation| half-extents): most
+    // surface nodes are outside it, and three pairs of comparisons reject them without a rotation
+    const Mat3 rot = m_pose.orientation.toRotationMatrix(), inv = rot.transpose();
+    const Vec3 centre = m_pose.position + rot * (0.5 * (lo + hi)), half = rot.cwiseAbs() * (0.5 * (hi - lo));
+    const Vec3 wlo = centre - half, whi = centre + half;
     const Positions& x = s.x();
     for (int i : m_surface) {
-        const Vec3& xi = x[size_t(i)];
-        if (xi[0] < wlo[0] || xi[0] > whi[0] || xi[1] < wlo[1] || xi[1] > whi[1] || xi[2] < wlo[2] || xi[2] > whi[2]) continue;
-        const Vec3 l = inv * (xi - m_pose.position);
+        const Vec3& p = x[size_t(i)];
+        if (p[0] < wlo[0] || p[0] > whi[0] || p[1] < wlo[1] || p[1] > whi[1] || p[2] < wlo[2] || p[2] > whi[2]) continue;
+        const Vec3 l = inv * (p - m_pose.position);
         if ((l.array() >= lo.array()).all() && (l.array() <= hi.array()).all()) out.push_back(i);
     }
 }
