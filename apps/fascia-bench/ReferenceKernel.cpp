@@ -2,6 +2,8 @@
 // force fields' element loops (docs/performance.md, Method).
 #include "ReferenceKernel.h"
 
+#include "fascia/materials/Laws.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -27,33 +29,32 @@ ReferenceTLED::ReferenceTLED(const Tetrahedra& tets, const Positions& X, double 
     std::iota(order.begin(), order.end(), 0);
     const auto lowest = [&](size_t e) { return *std::min_element(tets[e].begin(), tets[e].end()); };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return lowest(a) < lowest(b); });
+    for (auto& v : m_node) v.reserve(tets.size());
     for (size_t e : order) {
-        Element el;
         Mat3 Dm;  // rest edge matrix [X1 - X0, X2 - X0, X3 - X0]
-        for (int a = 0; a < 4; ++a) el.node[a] = tets[e][size_t(a)];
-        for (int k = 0; k < 3; ++k) Dm.col(k) = X[size_t(el.node[k + 1])] - X[size_t(el.node[0])];
-        el.V0 = std::abs(Dm.determinant()) / 6.0;  // TLED eq. (3)
-        // dN_a/dX for a = 1..3: the rows of Dm^-1; dN_0 = -(dN_1 + dN_2 + dN_3)
+        for (int a = 0; a < 4; ++a) m_node[a].push_back(tets[e][size_t(a)]);
+        for (int k = 0; k < 3; ++k) Dm.col(k) = X[size_t(tets[e][size_t(k + 1)])] - X[size_t(tets[e][0])];
+        m_V0.push_back(std::abs(Dm.determinant()) / 6.0);  // TLED eq. (3)
+        // dN_a/dX for a = 1..3: the rows of Dm^-1
         const Mat3 inv = Dm.inverse();
-        for (int c = 0; c < 3; ++c) {
-            el.dN[0][c] = 0.0;
-            for (int a = 1; a < 4; ++a) {
-                el.dN[a][c] = inv(a - 1, c);
-                el.dN[0][c] -= inv(a - 1, c);
-            }
-        }
-        m_elems.push_back(el);
+        for (int a = 1; a < 4; ++a)
+            for (int c = 0; c < 3; ++c) m_dN[3 * (a - 1) + c].push_back(inv(a - 1, c));
     }
+    // a batch's loads stay inside the arrays: kBatch zeros at the end (lanes past a thread's last
+    // element compute a rest state and are not scattered)
+    m_count = m_V0.size();
+    for (auto& v : m_dN) v.resize(m_count + kBatch, 0.0);
+    m_V0.resize(m_count + kBatch, 0.0);
     // thread t: a contiguous range of elements and a buffer over the nodes they use
     m_begin.resize(size_t(m_threads) + 1);
     m_lo.resize(size_t(m_threads));
     m_hi.resize(size_t(m_threads));
     m_buf.resize(size_t(m_threads));
-    for (int t = 0; t <= m_threads; ++t) m_begin[size_t(t)] = m_elems.size() * size_t(t) / size_t(m_threads);
+    for (int t = 0; t <= m_threads; ++t) m_begin[size_t(t)] = m_count * size_t(t) / size_t(m_threads);
     for (int t = 0; t < m_threads; ++t) {
         int lo = int(n), hi = -1;
         for (size_t e = m_begin[size_t(t)]; e < m_begin[size_t(t) + 1]; ++e)
-            for (int a : m_elems[e].node) lo = std::min(lo, a), hi = std::max(hi, a);
+            for (const auto& nd : m_node) lo = std::min(lo, nd[e]), hi = std::max(hi, nd[e]);
         if (hi < lo) lo = 0, hi = -1;
         m_lo[size_t(t)] = lo;
         m_hi[size_t(t)] = hi;
@@ -70,42 +71,65 @@ void ReferenceTLED::setState(const Positions& x, const Positions& v) {
         }
 }
 
-void ReferenceTLED::elementForces(const Element& el, double fe[4][3]) const {
-    // F = I + sum_a u_a (x) dN_a/dX (TLED eq. (1)-(3))
-    double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int a = 0; a < 4; ++a) {
-        const size_t p = 3 * size_t(el.node[a]);
+void ReferenceTLED::batchForces(size_t e0, int n, double (&fe)[4][3][kBatch]) const {
+    // gather u = x - X of the batch's nodes (padding lanes: zeros, a rest state)
+    alignas(64) double u[4][3][kBatch] = {};
+    for (int k = 0; k < n; ++k)
+        for (int a = 0; a < 4; ++a) {
+            const size_t p = 3 * size_t(m_node[a][e0 + size_t(k)]);
+            for (int c = 0; c < 3; ++c) u[a][c][k] = m_x[p + size_t(c)] - m_X[p + size_t(c)];
+        }
+    const double* dN[9];
+    for (int r = 0; r < 9; ++r) dN[r] = m_dN[r].data() + e0;
+    const double* V0 = m_V0.data() + e0;
+    const double mu = m_mu, kappa = m_kappa;
+    // (GCC ivdep, not omp simd: omp simd would keep the small local arrays in memory)
+#pragma GCC ivdep
+    for (int k = 0; k < kBatch; ++k) {
+        // F = I + sum_a u_a (x) dN_a/dX = I + sum_{a=1..3} (u_a - u_0) (x) dN_a/dX (TLED eq. (1)-(3))
+        double F[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                double s = i == j ? 1.0 : 0.0;
+                for (int a = 1; a < 4; ++a) s += (u[a][i][k] - u[0][i][k]) * dN[3 * (a - 1) + j][k];
+                F[i][j] = s;
+            }
+        // C = F^T F, J = det F, C^-1 = cof(C) / J^2
+        double C[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) C[i][j] = F[0][i] * F[0][j] + F[1][i] * F[1][j] + F[2][i] * F[2][j];
+        const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+                         F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+        const double t = materials::invCbrt(J), iJ = t * t * t, iJ2 = iJ * iJ;
+        double Ci[3][3];
+        Ci[0][0] = (C[1][1] * C[2][2] - C[1][2] * C[2][1]) * iJ2;
+        Ci[1][1] = (C[0][0] * C[2][2] - C[0][2] * C[2][0]) * iJ2;
+        Ci[2][2] = (C[0][0] * C[1][1] - C[0][1] * C[1][0]) * iJ2;
+        Ci[0][1] = Ci[1][0] = (C[0][2] * C[2][1] - C[0][1] * C[2][2]) * iJ2;
+        Ci[1][2] = Ci[2][1] = (C[0][2] * C[1][0] - C[0][0] * C[1][2]) * iJ2;
+        Ci[0][2] = Ci[2][0] = (C[0][1] * C[1][2] - C[0][2] * C[1][1]) * iJ2;
+        // S = mu J^(-2/3) (I - I1/3 C^-1) + kappa J (J - 1) C^-1 (TLED eq. (31)-(32) without fibres)
+        const double I1 = C[0][0] + C[1][1] + C[2][2];
+        const double a = mu * t * t, b = kappa * J * (J - 1.0) - a * I1 / 3.0;
+        double S[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) S[i][j] = (i == j ? a : 0.0) + b * Ci[i][j];
+        // f_a = -V0 F S dN_a/dX, f_0 = -(f_1 + f_2 + f_3)
+        const double V = V0[k];
+        double P[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) P[i][j] = V * (F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j]);
         for (int i = 0; i < 3; ++i) {
-            const double u = m_x[p + size_t(i)] - m_X[p + size_t(i)];
-            for (int j = 0; j < 3; ++j) F[i][j] += u * el.dN[a][j];
+            double f0 = 0.0;
+            for (int q = 1; q < 4; ++q) {
+                const double g0 = dN[3 * (q - 1)][k], g1 = dN[3 * (q - 1) + 1][k], g2 = dN[3 * (q - 1) + 2][k];
+                const double f = -(P[i][0] * g0 + P[i][1] * g1 + P[i][2] * g2);
+                fe[q][i][k] = f;
+                f0 -= f;
+            }
+            fe[0][i][k] = f0;
         }
     }
-    // C = F^T F, J = det F, C^-1 = cof(C) / J^2
-    double C[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) C[i][j] = F[0][i] * F[0][j] + F[1][i] * F[1][j] + F[2][i] * F[2][j];
-    const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
-                     F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-    const double iJ2 = 1.0 / (J * J);
-    double Ci[3][3];
-    Ci[0][0] = (C[1][1] * C[2][2] - C[1][2] * C[2][1]) * iJ2;
-    Ci[1][1] = (C[0][0] * C[2][2] - C[0][2] * C[2][0]) * iJ2;
-    Ci[2][2] = (C[0][0] * C[1][1] - C[0][1] * C[1][0]) * iJ2;
-    Ci[0][1] = Ci[1][0] = (C[0][2] * C[2][1] - C[0][1] * C[2][2]) * iJ2;
-    Ci[1][2] = Ci[2][1] = (C[0][2] * C[1][0] - C[0][0] * C[1][2]) * iJ2;
-    Ci[0][2] = Ci[2][0] = (C[0][1] * C[1][2] - C[0][2] * C[1][1]) * iJ2;
-    // S = mu J^(-2/3) (I - I1/3 C^-1) + kappa J (J - 1) C^-1 (TLED eq. (31)-(32) without fibres)
-    const double I1 = C[0][0] + C[1][1] + C[2][2];
-    const double a = m_mu * std::pow(J, -2.0 / 3.0), b = m_kappa * J * (J - 1.0) - a * I1 / 3.0;
-    double S[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) S[i][j] = (i == j ? a : 0.0) + b * Ci[i][j];
-    // f_a = -V0 F S dN_a/dX
-    double P[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) P[i][j] = el.V0 * (F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j]);
-    for (int q = 0; q < 4; ++q)
-        for (int i = 0; i < 3; ++i) fe[q][i] = -(P[i][0] * el.dN[q][0] + P[i][1] * el.dN[q][1] + P[i][2] * el.dN[q][2]);
 }
 
 template <bool Update>
@@ -118,11 +142,15 @@ void ReferenceTLED::run(double dt, double* f) {
             std::vector<double>& buf = m_buf[t];
             std::fill(buf.begin(), buf.end(), 0.0);
             const int lo = m_lo[t];
-            for (size_t e = m_begin[t]; e < m_begin[t + 1]; ++e) {
-                double fe[4][3];
-                elementForces(m_elems[e], fe);
-                for (int a = 0; a < 4; ++a)
-                    for (int c = 0; c < 3; ++c) buf[3 * size_t(m_elems[e].node[a] - lo) + size_t(c)] += fe[a][c];
+            alignas(64) double fe[4][3][kBatch];
+            for (size_t e0 = m_begin[t]; e0 < m_begin[t + 1]; e0 += kBatch) {
+                const int nb = int(std::min<size_t>(kBatch, m_begin[t + 1] - e0));
+                batchForces(e0, nb, fe);
+                for (int k = 0; k < nb; ++k)
+                    for (int a = 0; a < 4; ++a) {
+                        double* row = buf.data() + 3 * size_t(m_node[a][e0 + size_t(k)] - lo);
+                        for (int c = 0; c < 3; ++c) row[c] += fe[a][c][k];
+                    }
             }
         }
 #pragma omp barrier
@@ -156,7 +184,9 @@ void ReferenceTLED::step(double dt) { run<true>(dt, nullptr); }
 core::LayoutBytes ReferenceTLED::layoutBytes() const {
     constexpr size_t D = sizeof(double);
     core::LayoutBytes b;
-    b.elementData = m_elems.size() * sizeof(Element);
+    for (const auto& v : m_node) b.elementData += v.size() * sizeof(int);
+    for (const auto& v : m_dN) b.elementData += v.size() * D;
+    b.elementData += m_V0.size() * D;
     // X, x, 1/m read; v and x read and written (x counted once read, once written)
     b.nodeRows = (m_X.size() + m_x.size() + m_invMass.size()) * D + (m_v.size() + m_x.size()) * D + m_v.size() * D;
     // each buffer cleared, read and written by the elements, read by the sum

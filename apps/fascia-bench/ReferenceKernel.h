@@ -11,7 +11,9 @@
 /// buffers are summed per node in thread order and the nodes updated by semi-implicit Euler,
 ///   v += dt f / m, x += dt v   (v = 0 and x = X at fixed nodes),
 /// in one parallel region with one barrier. Results depend on the thread count (the sum order), not
-/// on the schedule.
+/// on the schedule. Written to be fast as well as plain: the element data as structure of arrays,
+/// batches of 16 elements through one vector loop (J^(-1/3) by materials::invCbrt, no pow), the
+/// gather and the scatter scalar.
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -32,24 +34,26 @@ public:
     /// One step of length dt: forces, then the node update.
     void step(double dt);
     const std::vector<double>& x() const { return m_x; }
-    size_t elementCount() const { return m_elems.size(); }
+    size_t elementCount() const { return m_count; }
     size_t nodeCount() const { return m_X.size() / 3; }
     /// What a step moves (core::LayoutBytes): the element records; X, x, v, m read, x, v written;
     /// the thread buffers cleared, read and written by the elements, read by the sum.
     core::LayoutBytes layoutBytes() const;
 
 private:
-    struct Element {
-        int node[4];
-        double dN[4][3];  ///< dN_a/dX
-        double V0;        ///< rest volume
-    };
+    /// Elements per batch: the stress loop runs over a batch as one vector loop.
+    static constexpr int kBatch = 16;
     /// The elements of thread t add into m_buf[t], then f or the update (dt > 0 with Update).
     template <bool Update>
     void run(double dt, double* f);
-    void elementForces(const Element& el, double fe[4][3]) const;
+    /// Forces fe[a][c][k] on node a of element e0 + k, k < n.
+    void batchForces(size_t e0, int n, double (&fe)[4][3][kBatch]) const;
 
-    std::vector<Element> m_elems;
+    // the elements, sorted by their lowest node, as structure of arrays
+    std::vector<int> m_node[4];
+    std::vector<double> m_dN[9];  ///< dN_a/dX component c of nodes a = 1..3 at 3 (a - 1) + c; dN_0 = -(dN_1 + dN_2 + dN_3)
+    std::vector<double> m_V0;     ///< rest volumes
+    size_t m_count = 0;           ///< elements (the arrays above hold kBatch more, zeros)
     std::vector<double> m_X, m_x, m_v, m_invMass;  ///< 3 per node (invMass: 1 per node, 0 when fixed)
     double m_mu, m_kappa;
     int m_threads;
