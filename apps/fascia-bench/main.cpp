@@ -44,7 +44,8 @@ usage:
                   yardstick of issue 17; the ratios *_vs_first are then to it
   --contend       during the timing, a competing busy process spins on one core (the last one
                   this process may use, pinned where allowed), as a render or haptic thread would;
-                  it is killed after the timing (and with the bench, on any exit or signal)
+                  it is killed after the timing and the --determinism runs (and with the bench,
+                  on any exit or signal)
   --suite [heml|tled|scaling|large]
                   the standard sets of docs/performance.md: heml (default: HEML compressible
                   neo-Hookean and Saint Venant-Kirchhoff on the 4.4k and 21k organ meshes and a
@@ -54,7 +55,7 @@ usage:
                   20k to 200k tetrahedra), large (issue 17's table: per size, the reference
                   kernel on 2 threads, then TLED and HEML in double on 2 threads and on 1, each
                   line quiet and then with --contend's competitor; 20k, 197k, 750k and 2.06M
-                  tetrahedra; the 2M line holds five copies of the mesh, about 4 GB)
+                  tetrahedra; the 2M line holds five copies of the mesh: several GB)
   --cubes LIST    the large suite's sizes as cube cells per side, e.g. 15,32 (default 15,32,50,70)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
