@@ -43,16 +43,18 @@ int lastCore() {
     return -1;
 }
 
-[[noreturn]] void spin(pid_t parent, int core) {
+/// Pins process pid to core; false when not allowed.
+bool pin(pid_t pid, int core) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(core, &set);
+    return sched_setaffinity(pid, sizeof set, &set) == 0;
+}
+
+[[noreturn]] void spin(pid_t parent) {
     // dies with the bench, even when it is killed with SIGKILL (and if it died before this line)
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(0);
-    if (core >= 0) {
-        cpu_set_t set;
-        CPU_ZERO(&set);
-        CPU_SET(core, &set);
-        sched_setaffinity(0, sizeof set, &set);
-    }
     volatile unsigned long x = 0;
     for (;;) {
         for (int i = 0; i < (1 << 24); ++i) x = x + 1;
@@ -70,8 +72,10 @@ Contender::Contender(bool on) {
     std::fflush(nullptr);  // nothing buffered twice
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("--contend: fork failed");
-    if (pid == 0) spin(parent, m_core);
+    if (pid == 0) spin(parent);
     m_pid = m_started = pid;
+    // pinned from here, so that core() says what the kernel did
+    if (m_core >= 0 && !pin(pid, m_core)) m_core = -1;
     g_child = pid;
     struct sigaction sa = {};
     sa.sa_handler = onSignal;
