@@ -1,6 +1,6 @@
 // fascia-bench --suite contact: what a rigid tool's contact adds to a step (issue 14: a capsule on
 // the 21k-tetrahedron abdomen-size mesh adds 10 % or less), side by side in one run.
-#include "BenchCase.h"
+#include "Bench.h"
 #include "fascia/sim/Tool.h"
 
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace bench {
+namespace fascia::bench {
 
 namespace {
 
@@ -73,7 +73,8 @@ size_t contactNodes(const fascia::core::BaseMechanicalState& st) {
 
 } // namespace
 
-void runContactSuite(const Case& base, const std::string& organMesh, const BuildCase& build, const RunCases& run) {
+void runContactSuite(const Case& base) {
+    const std::string organMesh = findMesh("organ_21436.msh");
     for (const char* ff : {"HEML", "TLED"}) {
         Case plain = base;
         plain.forcefield = ff;
@@ -86,7 +87,7 @@ void runContactSuite(const Case& base, const std::string& organMesh, const Build
         fascia::Vec3 top;
         double dt;
         {
-            auto sim = build(plain);
+            auto sim = build(plain, plain.threads);
             const auto& st = sim->state("state");
             top = st.x0()[0];
             for (const fascia::Vec3& p : st.x0())
@@ -97,7 +98,7 @@ void runContactSuite(const Case& base, const std::string& organMesh, const Build
         capsule.bodyExtra = capsuleXml(top, dt);
         capsule.label = "capsule";
         {
-            auto sim = build(capsule);
+            auto sim = build(capsule, capsule.threads);
             const size_t before = contactNodes(sim->state("state"));
             sim->run(base.steps);
             std::printf("{\"forcefield\": \"%s\", \"case\": \"capsule\", \"nodes_in_contact_after_settle\": %zu, "
@@ -119,14 +120,14 @@ void runContactSuite(const Case& base, const std::string& organMesh, const Build
         surface.bodyExtra = xml;
         surface.label = "surface capsule";
         {
-            auto sim = build(surface);
+            auto sim = build(surface, surface.threads);
             sim->run(base.steps);
             std::printf("{\"forcefield\": \"%s\", \"case\": \"surface capsule\", \"nodes_in_contact\": %zu, \"tool_force_z\": %.4g}\n", ff,
                         contactNodes(sim->state("state")), sim->tool("probe").force()[2]);
         }
-        run({plain, capsule, surface});
+        runCases({plain, capsule, surface});
         std::filesystem::remove(obj);
     }
 }
 
-} // namespace bench
+} // namespace fascia::bench

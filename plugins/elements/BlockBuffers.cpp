@@ -54,6 +54,12 @@ void BlockBuffers::sumInto(double* fp) {
     }
 }
 
+core::LayoutBytes BlockBuffers::stepBytes() const {
+    core::LayoutBytes b;
+    b.buffers = 4 * m_buf.size() * sizeof(double);
+    b.nodeRows = 2 * 3 * m_nodes * sizeof(double) + m_nodeOf.size() * sizeof(int);
+    return b;
+}
 
 size_t CompactBlockBuffers::addBlock(std::initializer_list<Nodes> parts) {
     // the block's distinct nodes, in increasing order, are its rows
@@ -118,6 +124,22 @@ void CompactBlockBuffers::sumInto(double* fp) const {
         q[1] += a1;
         q[2] += a2;
     }
+}
+
+core::LayoutBytes CompactBlockBuffers::stepBytes() const {
+    constexpr size_t D = sizeof(double), I = sizeof(int);
+    const size_t n = m_nodeOf.size();
+    core::LayoutBytes b;
+    // positionsIn (nodeOf, x, the copy written) and loadBlock's reads of the positions, once a node
+    if (m_directGather) b.nodeRows = 3 * n * D;
+    else b.nodeRows = n * I + 3 * n * D + 2 * m_xin.size() * D;
+    // the sum: the node's row lists, nodeOf, f read and written
+    b.nodeRows += m_nodeRowStart.size() * I + n * I + 2 * 3 * n * D;
+    // loadBlock: a row list (rowNode or rowInternal), the row positions written, the force rows
+    // cleared; the kernel: positions read, forces read and written; the sum: rows and lists read
+    b.buffers = (m_directGather ? m_rowNode.size() : m_rowInternal.size()) * I + 2 * m_xrow.size() * D +
+                4 * m_buf.size() * D + m_nodeRows.size() * I;
+    return b;
 }
 
 } // namespace fascia::elements

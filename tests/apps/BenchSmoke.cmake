@@ -1,13 +1,22 @@
 # Runs fascia-bench (FASCIA_BENCH) on a small TLED hexahedral cube of two element blocks: it must exit
-# with 0 and print its JSON line with the step and the force-field-alone figures, and the 1- and
-# 2-thread positions must agree. A smoke test, not a timing.
-execute_process(
-  COMMAND ${FASCIA_BENCH} --forcefield TLED --material NeoHookean --cube 9 --element hexahedra --steps 3 --repeat 1
-          --determinism
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "fascia-bench exited with ${rc}:\n${out}\n${err}")
-endif()
-if(NOT out MATCHES "\"elements\": 729, .*\"ns_per_element_step\": [0-9.]+, \"forcefield_ns_per_element\": [0-9.]+, \"bitwise_identical_1_vs_2_threads\": true}")
-  message(FATAL_ERROR "unexpected fascia-bench output:\n${out}\n${err}")
-endif()
+# with 0 and print its JSON line with the step, single-step and force-field-alone figures and the
+# bytes of the layout, and the 1- and 2-thread positions must agree. Then a tetrahedral cube with
+# the reference kernel beside TLED and the competitor of --contend. A smoke test, not a timing.
+
+# runs fascia-bench with the arguments after `regex` and fails unless it exits with 0 and its
+# output matches regex
+function(bench_matches regex)
+  execute_process(COMMAND ${FASCIA_BENCH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "fascia-bench ${ARGN} exited with ${rc}:\n${out}\n${err}")
+  endif()
+  if(NOT out MATCHES "${regex}")
+    message(FATAL_ERROR "unexpected output of fascia-bench ${ARGN}:\n${out}\n${err}")
+  endif()
+endfunction()
+
+bench_matches("\"elements\": 729, .*\"median_step_ms\": [0-9.]+, \"p90_step_ms\": [0-9.]+, \"p99_step_ms\": [0-9.]+.*\"ns_per_element_step\": [0-9.]+, \"forcefield_ns_per_element\": [0-9.]+, \"bytes_per_element_step\": [0-9.]+, .*\"bitwise_identical_1_vs_2_threads\": true}"
+  --forcefield TLED --material NeoHookean --cube 9 --element hexahedra --steps 3 --repeat 1 --determinism)
+
+bench_matches("^{\"forcefield\": \"reference\", \"material\": \"NeoHookean\", .*\"elements\": 384, .*\"contend\": true, \"contend_core\": -?[0-9]+, \"contend_cpu_s\": [0-9.]+}\n{\"forcefield\": \"TLED\", .*\"elements\": 384, .*\"step_time_vs_first\": [0-9.]+, .*\"contend\": true"
+  --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 2 --reference --contend)

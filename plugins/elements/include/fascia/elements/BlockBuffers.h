@@ -26,6 +26,7 @@
 ///   }
 #include "fascia/base/Simd.h"
 #include "fascia/elements/Hd.h"
+#include "fascia/sim/LayoutBytes.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -52,6 +53,10 @@ public:
     /// cleared for the next evaluation. An orphaned "omp for" over tiles of nodes: call it inside the
     /// parallel region of the element loop (or outside any, serially).
     void sumInto(double* f);
+    /// What one evaluation moves through the buffers and f (core::LayoutBytes): the scatter reads
+    /// and writes every row, the sum reads and clears it (4 passes); f is read and written, nodeOf
+    /// read. No element data (the force field adds its own).
+    core::LayoutBytes stepBytes() const;
 
 private:
     std::vector<int> m_lo, m_hi;
@@ -121,6 +126,12 @@ public:
     /// f (3 doubles per state node) += the buffers, each node's rows summed in block order (the
     /// buffers are not cleared: loadBlock<true> does that). An orphaned "omp for", as positionsIn.
     void sumInto(double* f) const;
+    /// What one evaluation moves through the rows and f (core::LayoutBytes): positionsIn reads x
+    /// and writes the internal copy (above the direct-gather size), loadBlock reads its row lists,
+    /// the positions (once per node) and writes the row positions and clears the force rows, the
+    /// kernel reads the row positions and reads and writes the force rows, the sum reads the lists
+    /// and the rows and reads and writes f. No element data (the force field adds its own).
+    core::LayoutBytes stepBytes() const;
 
 private:
     std::vector<size_t> m_rowStart{0};  ///< rows of block b: [m_rowStart[b], m_rowStart[b + 1])

@@ -44,6 +44,7 @@
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/elements/TetMesh.h"
 #include "fascia/materials/Material.h"
+#include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <memory>
@@ -58,7 +59,7 @@ namespace fascia::heml {
 
 struct HEMLData;
 
-class HEMLForceField : public core::BaseForceField {
+class HEMLForceField : public core::BaseForceField, public core::LayoutReport {
 public:
     HEMLForceField();
     ~HEMLForceField() override;
@@ -81,6 +82,10 @@ public:
     size_t elementCount() const override;
     /// elements::worstElement on its tetrahedra.
     bool worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const override;
+    /// What addForce() moves through memory, from the arrays after init (HEMLLayout.cpp): element
+    /// data (the slots' arrays the loop reads, viscous states read and written), node rows and the
+    /// compact block rows (elements::CompactBlockBuffers::stepBytes).
+    core::LayoutBytes layoutBytes() const override;
     /// The viscous history: gamma_i of eq. (20) per term, relaxed part and slot, committed and current,
     /// and the history clock (viscoelastic/HistoryClock.h); nothing without a ViscoelasticProny.
     void saveState(core::StateWriter& out) const override;

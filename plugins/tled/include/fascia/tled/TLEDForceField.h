@@ -63,6 +63,7 @@
 /// every node), the force field works in that order internally; the state's order is unchanged.
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/Material.h"
+#include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <array>
@@ -76,7 +77,7 @@ class ViscoelasticProny;
 
 namespace fascia::tled {
 
-class TLEDForceField : public core::BaseForceField {
+class TLEDForceField : public core::BaseForceField, public core::LayoutReport {
 public:
     TLEDForceField();
     ~TLEDForceField() override;
@@ -103,6 +104,10 @@ public:
     const Hexahedra* hexahedra() const override { return &m_hexes; }
     /// elements::worstElement on its tetrahedra and hexahedra (cell order).
     bool worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const override;
+    /// What addForce() moves through memory, from the arrays after init (TLEDLayout.cpp): element
+    /// data (the packed rows, volumes, connectivity, hourglass stiffness, viscous states read and
+    /// written), node rows (x and X read, u written and read, f read and written) and the block buffers.
+    core::LayoutBytes layoutBytes() const override;
     /// The viscous history (TLED eq. (30)): per Prony series the states Y_i of the last step and of
     /// the current evaluation, and the time of that evaluation (nothing without a ViscoelasticProny).
     void saveState(core::StateWriter& out) const override;

@@ -1,0 +1,26 @@
+// HEMLForceField::layoutBytes: the bytes one addForce moves, counted from the arrays after init
+// (core::LayoutBytes: each array once per pass that reads it, once more per pass that writes it).
+#include "fascia/heml/HEMLForceField.h"
+#include "HEMLKernel.h"
+
+namespace fascia::heml {
+
+core::LayoutBytes HEMLForceField::layoutBytes() const {
+    const HEMLData& d = *m_data;
+    core::LayoutBytes b = d.rows.stepBytes();  // positions in, the rows, their sum into f
+    constexpr size_t D = sizeof(double);
+    // per slot, what the element loop reads: the node rows, the volume, 1 / det V (J) and G; the
+    // fibre terms and the spring data where present (empty arrays otherwise)
+    size_t e = d.vol.size() * D + d.invDetV.size() * D;
+    for (const auto& n : d.node) e += n.size() * sizeof(int);
+    for (const auto& g : d.G) e += g.size() * D;
+    for (int i = 0; i < 3; ++i) e += (d.w4[i].size() + d.w6[i].size()) * D;
+    for (int k = 0; k < 6; ++k) e += (d.kk[k].size() + d.len0[k].size()) * D;
+    // viscosity: the committed history read, the current states written
+    for (const auto& y : d.Yprev) e += y.size() * D;
+    for (const auto& y : d.Ycur) e += y.size() * D;
+    b.elementData = e;
+    return b;
+}
+
+} // namespace fascia::heml

@@ -1,0 +1,28 @@
+// TLEDForceField::layoutBytes: the bytes one addForce moves, counted from the arrays after init
+// (core::LayoutBytes: each array once per pass that reads it, once more per pass that writes it).
+#include "TLEDData.h"
+
+namespace fascia::tled {
+
+namespace {
+/// What the element loop reads of one element kind: the packed rows (dN/dX, hourglass vectors,
+/// fibres), the volumes, the connectivity and (hexahedra) the hourglass stiffness.
+template <int NN>
+size_t elementBytes(const ElementSet<NN>& es) {
+    return es.pack.size() * sizeof(double) + es.vol.size() * sizeof(double) + es.nodes.size() * sizeof(int) +
+           es.hgK.size() * sizeof(double);
+}
+} // namespace
+
+core::LayoutBytes TLEDForceField::layoutBytes() const {
+    const Impl& im = *m_impl;
+    core::LayoutBytes b = im.buffers.stepBytes();  // the block buffers, f and nodeOf
+    b.elementData = elementBytes(im.tet) + elementBytes(im.hex);
+    for (const ViscoSet& vs : im.visco) b.elementData += (vs.Yprev.size() + vs.Ycur.size()) * sizeof(double);
+    // displacements: x and X read (3 doubles a node), u written (4 a node); the kernel reads u once
+    const size_t n = im.nodeCount;
+    b.nodeRows += 2 * 3 * n * sizeof(double) + 2 * 4 * n * sizeof(double);
+    return b;
+}
+
+} // namespace fascia::tled
