@@ -920,25 +920,28 @@ vtkNew<vtkUnstructuredGrid> invertedCubeGrid() {
 }
 
 /// A .vtu of grid in one of VTK's encodings: "ascii", "binary" (inline base64), "appended-base64",
-/// "appended-raw", each uncompressed, or "appended-zlib" (raw).
+/// "appended-raw", each uncompressed, or zlib-compressed: "binary-zlib", "appended-base64-zlib",
+/// "appended-zlib" (raw).
 std::string writeVtuAs(const std::string& name, vtkUnstructuredGrid* grid, const std::string& mode) {
     const std::string path = tmp().file(name);
     vtkNew<vtkXMLUnstructuredGridWriter> w;
     w->SetFileName(path.c_str());
     w->SetInputData(grid);
+    const bool zlib = mode.find("zlib") != std::string::npos;
     if (mode == "ascii") w->SetDataModeToAscii();
-    else if (mode == "binary") w->SetDataModeToBinary();
+    else if (mode.rfind("binary", 0) == 0) w->SetDataModeToBinary();
     else w->SetDataModeToAppended();
     if (mode == "appended-raw" || mode == "appended-zlib") w->EncodeAppendedDataOff();
-    if (mode == "appended-zlib") w->SetCompressorTypeToZLib();
+    if (zlib) w->SetCompressorTypeToZLib();
     else w->SetCompressorTypeToNone();
     REQUIRE(w->Write() == 1);
     return path;
 }
 
 /// Where, in a .vtu that VTK wrote, value k of the DataArray named `array` is, computed from the
-/// file's own tags: ascii, the k-th number; inline base64, the 4-character group of its first byte;
-/// appended raw, its first byte; appended zlib (one block), the block's first byte.
+/// file's own tags: ascii, the k-th number; base64, the 4-character group of its first byte;
+/// appended raw, its first byte; zlib (one block), the block's first byte (base64: the header's
+/// 4 words are encoded apart, then the block).
 size_t expectedValueByte(const std::string& text, const std::string& array, size_t k, const std::string& mode) {
     const size_t tag = tagOffset(text, "Name=\"" + array + "\"");
     const std::string tagText = text.substr(tag, text.find('>', tag) - tag);
@@ -952,20 +955,23 @@ size_t expectedValueByte(const std::string& text, const std::string& array, size
             while (!std::isspace((unsigned char)text[p])) ++p;
         }
     }
-    if (mode == "binary") {
-        size_t p = text.find('>', tag) + 1;
-        while (std::isspace((unsigned char)text[p])) ++p;
-        return p + (w + k * tb) / 3 * 4;
+    size_t data = 0;
+    if (mode.rfind("binary", 0) == 0) {
+        data = text.find('>', tag) + 1;
+        while (std::isspace((unsigned char)text[data])) ++data;
+    } else {
+        const size_t o = tagText.find("offset=\"");
+        data = text.find('_', text.find("<AppendedData")) + 1 + std::stoul(tagText.substr(o + 8));
     }
-    const size_t o = tagText.find("offset=\"");
-    const size_t data = text.find('_', text.find("<AppendedData")) + 1 + std::stoul(tagText.substr(o + 8));
-    if (mode == "appended-base64") return data + (w + k * tb) / 3 * 4;
+    if (mode == "binary" || mode == "appended-base64") return data + (w + k * tb) / 3 * 4;
     if (mode == "appended-raw") return data + w + k * tb;
-    return data + 4 * w;  // zlib: one block, after the 4 header words
+    if (mode == "appended-zlib") return data + 4 * w;  // one block, after the 4 header words
+    return data + (4 * w + 2) / 3 * 4;                 // base64 zlib: the header's characters, then the block
 }
 
 TEST_CASE("Errors found after VTK read a .vtu are located at the byte of the cell or point", "[MeshLoader][errors]") {
-    const std::string mode = GENERATE(as<std::string>{}, "ascii", "binary", "appended-base64", "appended-raw", "appended-zlib");
+    const std::string mode = GENERATE(as<std::string>{}, "ascii", "binary", "appended-base64", "appended-raw", "binary-zlib",
+                                      "appended-base64-zlib", "appended-zlib");
     CAPTURE(mode);
     vtkNew<vtkUnstructuredGrid> g = invertedCubeGrid();
     SECTION("an inverted cell: at its first connectivity value (value 4)") {
