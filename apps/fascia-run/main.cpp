@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -181,155 +182,195 @@ void writeLastGood(Simulation& sim, const std::string& checkpoint) {
     }
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
+/// The command line.
+struct Options {
     std::string scene, output, describeName, checkpoint, restart;
     long steps = -1, checkpointEvery = 0;
     double endTime = -1, dt = 0;
     int threads = 0;
-    bool quiet = false, timers = false, list = false;
+    bool quiet = false, timers = false, list = false, help = false;
+};
+
+/// Parses the command line; a bad one exits 1 (usage). Stops at --help (help set).
+Options parseArgs(int argc, char** argv) {
+    Options o;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
         if (a == "--help" || a == "-h") {
-            std::cout << kHelp;
-            return 0;
+            o.help = true;
+            return o;
         } else if (a == "--steps") {
-            steps = parseCount(a, next(), 0, kMaxSteps);
+            o.steps = parseCount(a, next(), 0, kMaxSteps);
         } else if (a == "--time") {
-            endTime = parseNumber(a, next());
+            o.endTime = parseNumber(a, next());
         } else if (a == "--dt") {
-            dt = parseNumber(a, next());
+            o.dt = parseNumber(a, next());
         } else if (a == "--threads") {
-            threads = int(parseCount(a, next(), 1, 1024));
+            o.threads = int(parseCount(a, next(), 1, 1024));
         } else if (a == "--output") {
             const char* v = next();
             if (!v) usage("--output needs a folder");
-            output = v;
+            o.output = v;
         } else if (a == "--quiet" || a == "-q") {
-            quiet = true;
+            o.quiet = true;
         } else if (a == "--timers") {
-            timers = true;
+            o.timers = true;
         } else if (a == "--checkpoint") {
             const char* v = next();
             if (!v || !*v) usage("--checkpoint needs a file");
-            checkpoint = v;
+            o.checkpoint = v;
         } else if (a == "--checkpoint-every") {
-            checkpointEvery = parseCount(a, next(), 1, kMaxSteps);
+            o.checkpointEvery = parseCount(a, next(), 1, kMaxSteps);
         } else if (a == "--restart") {
             const char* v = next();
             if (!v || !*v) usage("--restart needs a checkpoint file");
-            restart = v;
+            o.restart = v;
         } else if (a == "--list") {
-            list = true;
+            o.list = true;
         } else if (a == "--describe") {
             const char* v = next();
             if (!v) usage("--describe needs a component name");
-            describeName = v;
+            o.describeName = v;
         } else if (!a.empty() && a[0] == '-') {
             usage("unknown option '" + a + "'");
-        } else if (scene.empty()) {
-            scene = a;
+        } else if (o.scene.empty()) {
+            o.scene = a;
         } else {
-            usage("one scene at a time ('" + scene + "' and '" + a + "')");
+            usage("one scene at a time ('" + o.scene + "' and '" + a + "')");
         }
     }
-    if (steps >= 0 && endTime > 0) usage("give --steps or --time, not both");
-    if (checkpointEvery > 0 && checkpoint.empty()) usage("--checkpoint-every needs --checkpoint FILE");
+    if (o.steps >= 0 && o.endTime > 0) usage("give --steps or --time, not both");
+    if (o.checkpointEvery > 0 && o.checkpoint.empty()) usage("--checkpoint-every needs --checkpoint FILE");
+    return o;
+}
+
+/// Loads the scene (and the --restart checkpoint) and works out the run: the end time T (0 for a
+/// run of a number of steps) and the number of steps, into o.steps. Writes nothing.
+std::unique_ptr<Simulation> loadScene(Options& o, double& T) {
+    LoadOptions opts;
+    opts.outputDir = o.output;
+    opts.dt = o.dt;
+    if (!o.checkpoint.empty()) checkCheckpointFolder(o.checkpoint);
+    std::unique_ptr<Simulation> sim = Simulation::fromFile(o.scene, opts);
+    if (!o.restart.empty()) sim->restore(o.restart);
+    if (!(sim->dt() > 0))
+        throwInputError({o.scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
+    // a run to an end time ends on it exactly: its last step is shortened (Simulation::stepToward)
+    T = o.steps >= 0 ? 0.0 : o.endTime > 0 ? o.endTime : sim->root().endTime.get();
+    if (o.steps >= 0) return sim;
+    if (!o.restart.empty() && T > 0 && !(sim->stepsUntil(T) > 0))
+        throwInputError({o.restart, 0}, "the checkpoint is at t = " + std::to_string(sim->time()) +
+                                            " s, at or past the end time " + std::to_string(T) + " s: nothing to run",
+                        {"give a later --time, or --steps N for N more steps"});
+    if (T > 0 && o.restart.empty()) sim->checkEndTime(T);  // (a restarted run may have less than dt left)
+    const double n = T > 0 ? std::ceil((T - sim->time()) / sim->dt() - 1e-9) : 100.0;
+    if (!(n <= double(kMaxSteps))) {
+        std::ostringstream msg;
+        msg << "time " << T << " s at dt = " << sim->dt() << " s is more than 1e12 steps";
+        throwInputError({o.scene, sim->root().loc().line}, msg.str());
+    }
+    o.steps = T > 0 ? sim->stepsUntil(T) : long(n);
+    return sim;
+}
+
+/// What the stepping did: the steps done, the wall time, the step of the last periodic checkpoint.
+struct RunResult {
+    long done = 0, saved = -1;
+    double wall = 0;
+};
+
+/// Starts the observers and runs the steps (toward T when T > 0), with the periodic checkpoints and
+/// the progress bar, until done or interrupted.
+RunResult runSteps(Simulation& sim, const Options& o, double T) {
+    sim.start();  // the scene is valid: only now do the observers write the initial state
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    const bool bar = !o.quiet && isatty(STDERR_FILENO);
+    const auto start = std::chrono::steady_clock::now();
+    auto lastDraw = start;
+    RunResult r;
+    for (; r.done < o.steps && !g_interrupted; ++r.done) {
+        if (T > 0) sim.stepToward(T);
+        else sim.step();
+        if (o.checkpointEvery > 0 && sim.stepCount() % o.checkpointEvery == 0) {
+            sim.save(o.checkpoint);
+            r.saved = sim.stepCount();
+        }
+        if (bar) {
+            auto now = std::chrono::steady_clock::now();
+            if (now - lastDraw > std::chrono::milliseconds(100) || r.done + 1 == o.steps) {
+                progress(r.done + 1, o.steps, std::chrono::duration<double>(now - start).count());
+                lastDraw = now;
+            }
+        }
+    }
+    r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (bar) std::fputc('\n', stderr);
+    return r;
+}
+
+/// The end of the run: the end checkpoint, the final records, the summary line, the timers and the
+/// static solvers' reports; returns the exit code (130 interrupted, 3 a static solve that failed).
+int finishRun(Simulation& sim, const Options& o, const RunResult& r) {
+    // the end checkpoint holds the state before finish() records the final state, as a run that
+    // went on would have it
+    if (!o.checkpoint.empty() && r.saved != sim.stepCount()) sim.save(o.checkpoint);
+    sim.finish();
+    const double simulated = sim.time();
+    std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", r.done,
+                simulated, r.wall, r.done ? 1e3 * r.wall / double(r.done) : 0.0, r.wall > 0 ? simulated / r.wall : 0.0);
+    if (o.timers) {
+        std::printf("%-40s %-22s %12s %10s\n", "component", "type", "seconds", "calls");
+        for (auto& t : sim.timers())
+            if (t.calls) std::printf("%-40s %-22s %12.6f %10ld\n", t.path.c_str(), t.type.c_str(), t.seconds, t.calls);
+    }
+    // what a static solver reports (once per integrator); one that did not converge exits 3
+    std::vector<const BaseIntegrator*> integrators;
+    bool failed = false;
+    for (auto& g : sim.groups())
+        if (std::find(integrators.begin(), integrators.end(), g.integrator) == integrators.end()) {
+            integrators.push_back(g.integrator);
+            if (const std::string line = g.integrator->runSummary(); !line.empty()) std::printf("%s\n", line.c_str());
+            failed |= g.integrator->runFailed();
+        }
+    if (g_interrupted) {
+        std::cerr << "fascia-run: interrupted after " << r.done << " steps (files written so far are complete)\n";
+        return 130;
+    }
+    if (failed) {
+        std::cerr << "fascia-run: the static solution did not converge in some load steps (see the warnings above)\n";
+        return 3;
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options o = parseArgs(argc, argv);
+    if (o.help) {
+        std::cout << kHelp;
+        return 0;
+    }
     std::unique_ptr<Simulation> sim;
     try {
-        if (list) return listComponents();
-        if (!describeName.empty()) return describe(describeName);
-        if (scene.empty()) usage("no scene given");
-        if (threads > 0) omp_set_num_threads(threads);
-        setTimersEnabled(timers);
-
-        LoadOptions opts;
-        opts.outputDir = output;
-        opts.dt = dt;
-        if (!checkpoint.empty()) checkCheckpointFolder(checkpoint);
-        sim = Simulation::fromFile(scene, opts);
-        if (!restart.empty()) sim->restore(restart);
-        if (!(sim->dt() > 0))
-            throwInputError({scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
-        // a run to an end time ends on it exactly: its last step is shortened (Simulation::stepToward)
-        const double T = steps >= 0 ? 0.0 : endTime > 0 ? endTime : sim->root().endTime.get();
-        if (steps < 0) {
-            if (!restart.empty() && T > 0 && !(sim->stepsUntil(T) > 0))
-                throwInputError({restart, 0}, "the checkpoint is at t = " + std::to_string(sim->time()) +
-                                                  " s, at or past the end time " + std::to_string(T) + " s: nothing to run",
-                                {"give a later --time, or --steps N for N more steps"});
-            if (T > 0 && restart.empty()) sim->checkEndTime(T);  // (a restarted run may have less than dt left)
-            const double n = T > 0 ? std::ceil((T - sim->time()) / sim->dt() - 1e-9) : 100.0;
-            if (!(n <= double(kMaxSteps))) {
-                std::ostringstream msg;
-                msg << "time " << T << " s at dt = " << sim->dt() << " s is more than 1e12 steps";
-                throwInputError({scene, sim->root().loc().line}, msg.str());
-            }
-            steps = T > 0 ? sim->stepsUntil(T) : long(n);
-        }
-        sim->start();  // the scene is valid: only now do the observers write the initial state
-        std::signal(SIGINT, onSignal);
-        std::signal(SIGTERM, onSignal);
-        const bool bar = !quiet && isatty(STDERR_FILENO);
-        const auto start = std::chrono::steady_clock::now();
-        auto lastDraw = start;
-        long done = 0, saved = -1;
-        for (; done < steps && !g_interrupted; ++done) {
-            if (T > 0) sim->stepToward(T);
-            else sim->step();
-            if (checkpointEvery > 0 && sim->stepCount() % checkpointEvery == 0) {
-                sim->save(checkpoint);
-                saved = sim->stepCount();
-            }
-            if (bar) {
-                auto now = std::chrono::steady_clock::now();
-                if (now - lastDraw > std::chrono::milliseconds(100) || done + 1 == steps) {
-                    progress(done + 1, steps, std::chrono::duration<double>(now - start).count());
-                    lastDraw = now;
-                }
-            }
-        }
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (bar) std::fputc('\n', stderr);
-        // the end checkpoint holds the state before finish() records the final state, as a run that
-        // went on would have it
-        if (!checkpoint.empty() && saved != sim->stepCount()) sim->save(checkpoint);
-        sim->finish();
-        const double simulated = sim->time();
-        std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", done,
-                    simulated, wall, done ? 1e3 * wall / double(done) : 0.0, wall > 0 ? simulated / wall : 0.0);
-        if (timers) {
-            std::printf("%-40s %-22s %12s %10s\n", "component", "type", "seconds", "calls");
-            for (auto& r : sim->timers())
-                if (r.calls) std::printf("%-40s %-22s %12.6f %10ld\n", r.path.c_str(), r.type.c_str(), r.seconds, r.calls);
-        }
-        // what a static solver reports (once per integrator); one that did not converge exits 3
-        std::vector<const BaseIntegrator*> integrators;
-        bool failed = false;
-        for (auto& g : sim->groups())
-            if (std::find(integrators.begin(), integrators.end(), g.integrator) == integrators.end()) {
-                integrators.push_back(g.integrator);
-                if (const std::string line = g.integrator->runSummary(); !line.empty()) std::printf("%s\n", line.c_str());
-                failed |= g.integrator->runFailed();
-            }
-        if (g_interrupted) {
-            std::cerr << "fascia-run: interrupted after " << done << " steps (files written so far are complete)\n";
-            return 130;
-        }
-        if (failed) {
-            std::cerr << "fascia-run: the static solution did not converge in some load steps (see the warnings above)\n";
-            return 3;
-        }
-        return 0;
+        if (o.list) return listComponents();
+        if (!o.describeName.empty()) return describe(o.describeName);
+        if (o.scene.empty()) usage("no scene given");
+        if (o.threads > 0) omp_set_num_threads(o.threads);
+        setTimersEnabled(o.timers);
+        double T = 0;
+        sim = loadScene(o, T);
+        const RunResult r = runSteps(*sim, o, T);
+        return finishRun(*sim, o, r);
     } catch (const Error& e) {
         std::cout.flush();
         std::cerr << std::string(e.what()) + "\n";
         switch (e.kind()) {
         case ErrorKind::Input: return 2;
         case ErrorKind::Simulation:
-            if (sim && sim->failedStep() > 0) writeLastGood(*sim, checkpoint);
+            if (sim && sim->failedStep() > 0) writeLastGood(*sim, o.checkpoint);
             return 3;
         default: return 1;
         }

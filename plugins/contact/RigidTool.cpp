@@ -1,5 +1,6 @@
 #include "RigidTool.h"
 #include "BoundaryNodes.h"
+#include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <cmath>
@@ -20,6 +21,21 @@ std::string num(double v) {
 /// body's size to estimate the stiffness), so that probing does not switch a pressed node's contact
 /// off and read its whole contact force as stiffness; far below any deformation of interest.
 constexpr double kTouch = 2e-7;
+
+/// A pose as 7 doubles: position x y z, orientation w x y z.
+void putPose(core::StateWriter& out, const std::string& name, const core::Pose& p) {
+    const Eigen::Quaterniond& q = p.orientation;
+    const double v[7] = {p.position.x(), p.position.y(), p.position.z(), q.w(), q.x(), q.y(), q.z()};
+    out.put(name, v, 7);
+}
+core::Pose getPose(core::StateReader& in, const std::string& name) {
+    double v[7];
+    in.getInto(name, v, 7);
+    core::Pose p;
+    p.position = Vec3(v[0], v[1], v[2]);
+    p.orientation = Eigen::Quaterniond(v[3], v[4], v[5], v[6]);
+    return p;
+}
 } // namespace
 
 RigidTool::RigidTool() = default;
@@ -56,6 +72,48 @@ void RigidTool::initContact() {
     m_active.clear();
     m_poseTime = m_prevTime = node()->context().time;
     m_pose = m_prevPose = m_hasSet ? m_set : m_motion.at(m_poseTime);
+}
+
+void RigidTool::saveState(core::StateWriter& out) const {
+    putPose(out, "pose", m_pose);
+    putPose(out, "prevPose", m_prevPose);
+    out.put("poseTime", m_poseTime);
+    out.put("prevTime", m_prevTime);
+    out.put("hasSet", m_hasSet);
+    putPose(out, "setPose", m_set);
+    out.put("stepped", m_stepped);
+    out.put("force", m_force.data(), 3);
+    out.put("torque", m_torque.data(), 3);
+    out.put("contact", m_contact);
+    out.put("active", std::vector<double>(m_active.begin(), m_active.end()));  // node indices: exact as doubles
+    out.put("slip", std::string(m_slip.begin(), m_slip.end()));
+    out.put("slipDir", m_slipDir);
+}
+
+void RigidTool::restoreState(core::StateReader& in) {
+    m_pose = getPose(in, "pose");
+    m_prevPose = getPose(in, "prevPose");
+    m_poseTime = in.getDouble("poseTime");
+    m_prevTime = in.getDouble("prevTime");
+    m_hasSet = in.getBool("hasSet");
+    m_set = getPose(in, "setPose");
+    m_stepped = in.getBool("stepped");
+    in.getInto("force", m_force.data(), 3);
+    in.getInto("torque", m_torque.data(), 3);
+    in.getInto("contact", m_contact);
+    const std::vector<double> active = in.getDoubles("active");
+    const std::string slip = in.getText("slip");
+    if (slip.size() != m_slip.size())
+        in.fail("[" + path() + "] record 'slip' has " + std::to_string(slip.size()) + " values, this scene needs " +
+                std::to_string(m_slip.size()));
+    m_active.clear();
+    for (double a : active) {
+        if (!(a >= 0 && a < double(m_contact.size()) && a == std::floor(a)))
+            in.fail("[" + path() + "] record 'active' holds " + num(a) + ", not a node of the body");
+        m_active.push_back(int(a));
+    }
+    m_slip.assign(slip.begin(), slip.end());
+    in.getInto("slipDir", m_slipDir);
 }
 
 void RigidTool::setPose(const core::Pose& pose) {

@@ -37,6 +37,12 @@ public:
     void projectVelocities(core::BaseMechanicalState& s, double t) override;
     void projectForces(core::BaseMechanicalState& s) override;
 
+    /// Between steps it carries: the last two poses and their times, the pose setPose gave (state of
+    /// the embedding program, not a function of time), the per-node contact forces, stick/slide
+    /// states and sliding directions of the last force evaluation, and the force and torque.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
+
     void setPose(const core::Pose& pose) override;
     core::Pose pose() const override { return m_pose; }
     Vec3 force() const override { return m_force; }

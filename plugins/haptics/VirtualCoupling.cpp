@@ -1,4 +1,5 @@
 #include "fascia/haptics/VirtualCoupling.h"
+#include "fascia/base/StateIO.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -50,6 +51,40 @@ Vec3 VirtualCoupling::forceFelt(const Vec3& x, const Vec3& v, std::uint64_t* seq
     if (sequence) *sequence = t.sequence;
     if (t.sequence == 0) return Vec3::Zero();
     return force(x, v, t.position, t.velocity);
+}
+
+namespace {
+void putSample(core::StateWriter& out, const std::string& side, const CouplingSample& s) {
+    out.put(side + ".position", s.position.data(), 3);
+    out.put(side + ".velocity", s.velocity.data(), 3);
+    out.put(side + ".force", s.force.data(), 3);
+    out.put(side + ".sequence", long(s.sequence));
+}
+CouplingSample getSample(core::StateReader& in, const std::string& side) {
+    CouplingSample s;
+    in.getInto(side + ".position", s.position.data(), 3);
+    in.getInto(side + ".velocity", s.velocity.data(), 3);
+    in.getInto(side + ".force", s.force.data(), 3);
+    s.sequence = std::uint64_t(in.getLong(side + ".sequence"));
+    return s;
+}
+} // namespace
+
+void VirtualCoupling::saveState(core::StateWriter& out) const {
+    out.put("filtered", m_filtered.data(), 3);
+    putSample(out, "device", device());
+    putSample(out, "tool", tool());
+}
+
+void VirtualCoupling::restoreState(core::StateReader& in) {
+    in.getInto("filtered", m_filtered.data(), 3);
+    const CouplingSample d = getSample(in, "device"), t = getSample(in, "tool");
+    {
+        std::lock_guard<std::mutex> lock(m_deviceMutex);
+        m_device = d;
+    }
+    std::lock_guard<std::mutex> lock(m_toolMutex);
+    m_tool = t;
 }
 
 } // namespace fascia::haptics

@@ -113,6 +113,22 @@ void BarycentricSurfaceMapping::observeFinal(double t, long step) {
     if (m_series.started() && step != m_series.lastStep()) write(t, step);
 }
 
+void BarycentricSurfaceMapping::saveState(core::StateWriter& out) const {
+#if FASCIA_MESHIO_WITH_VTK  // without VTK there is no series (SurfaceSeries.cpp is not built)
+    if (m_series.started()) m_series.saveState(out, "");
+#else
+    (void)out;
+#endif
+}
+
+void BarycentricSurfaceMapping::restoreState(core::StateReader& in) {
+#if FASCIA_MESHIO_WITH_VTK
+    if (m_series.started()) m_series.restoreState(in, "");
+#else
+    (void)in;
+#endif
+}
+
 void BarycentricSurfaceMapping::cleanup() {
     if (m_series.started()) m_series.finish();
 }

@@ -24,6 +24,9 @@ public:
     void observe(double t, long step) override;
     void observeFinal(double t, long step) override;
     void cleanup() override;
+    /// Its .vtp series (the files so far and the last step written): a restored run continues it.
+    void saveState(core::StateWriter& out) const override;
+    void restoreState(core::StateReader& in) override;
     const core::BaseMechanicalState* body() const override { return m_st; }
 
     /// Per vertex: its tetrahedron, weights and distance from the body at rest (0 inside).

@@ -1,6 +1,7 @@
 #include "PvdSeries.h"
 #include "fascia/base/Component.h"
 #include "fascia/base/Error.h"
+#include "fascia/base/StateIO.h"
 
 #include <filesystem>
 #include <fstream>
@@ -63,6 +64,35 @@ void PvdSeries::write() {
     s << "  </Collection>\n</VTKFile>\n";
     writeFileAtomically(m_path, s.str());
     m_listed = m_written.size();
+}
+
+void PvdSeries::saveState(core::StateWriter& out, const std::string& prefix) const {
+    std::vector<double> times;
+    std::string names;
+    for (const auto& [t, f] : m_written) times.push_back(t), names += f + "\n";
+    out.put(prefix + "times", times);
+    out.put(prefix + "files", names);
+}
+
+void PvdSeries::restoreState(core::StateReader& in, const std::string& prefix, const core::Component& owner) {
+    const std::vector<double> times = in.getDoubles(prefix + "times");
+    const std::string names = in.getText(prefix + "files");
+    std::vector<std::pair<double, std::string>> written;
+    std::istringstream lines(names);
+    for (std::string f; std::getline(lines, f);) written.emplace_back(0.0, f);
+    if (written.size() != times.size())
+        in.fail("[" + owner.path() + "] the checkpoint lists " + std::to_string(written.size()) + " files and " +
+                std::to_string(times.size()) + " times for '" + fs::path(m_path).filename().string() + "'");
+    for (size_t k = 0; k < times.size(); ++k) written[k].first = times[k];
+    restore(written);  // the .pvd is rewritten with the next file
+    const fs::path dir = fs::path(m_path).parent_path();
+    std::error_code ec;
+    for (const auto& [t, f] : written)
+        if (!fs::exists(dir / f, ec)) {
+            owner.warn("the series of the checkpoint has '" + f + "', which is not in the output folder '" + dir.string() +
+                       "': the .pvd will list it (restart into the output folder of the run that wrote the checkpoint)");
+            break;
+        }
 }
 
 } // namespace fascia::meshio

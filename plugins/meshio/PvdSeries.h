@@ -5,6 +5,12 @@
 #include <utility>
 #include <vector>
 
+namespace fascia::core {
+class Component;
+class StateWriter;
+class StateReader;
+} // namespace fascia::core
+
 namespace fascia::meshio {
 
 /// Lists (time, file) pairs in a .pvd file. It is rewritten after every file while the series is
@@ -29,6 +35,12 @@ public:
         m_lastWrite = 0;
     }
     const std::string& path() const { return m_path; }
+    /// The checkpoint of a series: files() as the records <prefix>times and <prefix>files.
+    void saveState(core::StateWriter& out, const std::string& prefix) const;
+    /// Reads them back into restore(); errors name `owner`. A warning of `owner` when a file of the
+    /// series is not beside the .pvd (the .pvd lists it all the same: restart into the output folder
+    /// of the run that wrote the checkpoint).
+    void restoreState(core::StateReader& in, const std::string& prefix, const core::Component& owner);
 
 private:
     void write();

@@ -1,4 +1,5 @@
 #include "SurfaceSeries.h"
+#include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <vtkCellArray.h>
@@ -27,6 +28,16 @@ void SurfaceSeries::start(const core::Component& owner, const std::string& base,
     removeStaleTemporaries(pvd.string(), fs::path(m_base).filename().string());
     m_pvd.reset(pvd.string());
     m_lastStep = -1;
+}
+
+void SurfaceSeries::saveState(core::StateWriter& out, const std::string& prefix) const {
+    m_pvd.saveState(out, prefix);
+    out.put(prefix + "lastStep", m_lastStep);
+}
+
+void SurfaceSeries::restoreState(core::StateReader& in, const std::string& prefix) {
+    m_pvd.restoreState(in, prefix, *m_owner);
+    m_lastStep = in.getLong(prefix + "lastStep");
 }
 
 void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {

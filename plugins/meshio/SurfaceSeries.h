@@ -33,6 +33,10 @@ public:
     void finish() { m_pvd.finish(); }
     bool started() const { return !m_base.empty(); }
     long lastStep() const { return m_lastStep; }
+    /// The checkpoint of the series (PvdSeries::saveState, and the last step written), as records
+    /// named <prefix>...; restoreState reads them back after start().
+    void saveState(core::StateWriter& out, const std::string& prefix) const;
+    void restoreState(core::StateReader& in, const std::string& prefix);
 
 private:
     const core::Component* m_owner = nullptr;

@@ -233,34 +233,15 @@ void VTKExporter::writeStep(double t, long step) {
 }
 
 void VTKExporter::saveState(core::StateWriter& out) const {
-    std::vector<double> times;
-    std::string names;
-    for (const auto& [t, f] : m_pvd.files()) times.push_back(t), names += f + "\n";
-    out.put("times", times);
-    out.put("files", names);
+    m_pvd.saveState(out, "");
     out.put("lastStep", m_lastStep);
+    if (m_surfaceSeries.started()) m_surfaceSeries.saveState(out, "surface.");
 }
 
 void VTKExporter::restoreState(core::StateReader& in) {
-    const std::vector<double> times = in.getDoubles("times");
-    const std::string names = in.getText("files");
+    m_pvd.restoreState(in, "", *this);
     m_lastStep = in.getLong("lastStep");
-    std::vector<std::pair<double, std::string>> written;
-    std::istringstream lines(names);
-    for (std::string f; std::getline(lines, f);) written.emplace_back(0.0, f);
-    if (written.size() != times.size())
-        in.fail("[" + path() + "] the checkpoint lists " + std::to_string(written.size()) + " files and " +
-                std::to_string(times.size()) + " times");
-    for (size_t k = 0; k < times.size(); ++k) written[k].first = times[k];
-    m_pvd.restore(written);  // the .pvd is rewritten with the next file
-    std::error_code ec;
-    for (const auto& [t, f] : written)
-        if (!fs::exists(fs::path(node()->context().outputDir) / f, ec)) {
-            warn("the series of the checkpoint has '" + f + "', which is not in the output folder '" +
-                 node()->context().outputDir + "': the .pvd will list it (restart into the output folder of the run "
-                 "that wrote the checkpoint)");
-            break;
-        }
+    if (m_surfaceSeries.started()) m_surfaceSeries.restoreState(in, "surface.");
 }
 
 void VTKExporter::cleanup() {

@@ -32,9 +32,9 @@ public:
     /// The final state of the run, when `every` skipped it.
     void observeFinal(double t, long step) override;
     void cleanup() override;
-    /// The files of the series so far (time and name, for the .pvd) and the step of the last one: a
-    /// restored run lists the earlier files in its .pvd (a warning when one is not in the output
-    /// folder).
+    /// The files of the series so far (time and name, for the .pvd) and the step of the last one, for
+    /// the volume series and (surface="true") the surface series: a restored run lists the earlier
+    /// files in each .pvd (a warning when one is not in the output folder).
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
 

@@ -4,6 +4,7 @@
 #include "VTUHeaderCheck.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
@@ -18,7 +19,9 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -120,7 +123,19 @@ private:
     std::vector<std::string> m_errors;
 };
 
-/// A .vtu through vtkXMLUnstructuredGridReader; VTK's complaints become a located error.
+/// The byte VTK's XML parser names in its message ("... byte index N: ..."), -1 when none does.
+long long parserByte(const std::string& message) {
+    const std::string key = "byte index ";
+    const size_t p = message.find(key);
+    if (p == std::string::npos) return -1;
+    long long n = -1;
+    const char* b = message.c_str() + p + key.size();
+    const auto [end, ec] = std::from_chars(b, message.c_str() + message.size(), n);
+    return ec == std::errc() && end != b && n >= 0 ? n : -1;
+}
+
+/// A .vtu through vtkXMLUnstructuredGridReader; VTK's complaints become a located error (at the
+/// byte its XML parser names, else at the file: VTK's data errors say no more than the array).
 vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMessageCatcher& catcher) {
     vtkNew<vtkXMLUnstructuredGridReader> reader;
     catcher.watch(reader);
@@ -130,19 +145,69 @@ vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMes
              "type=\"UnstructuredGrid\" ...>; check that the file is complete and of the right kind");
     reader->SetFileName(path.c_str());
     reader->Update();
-    if (catcher.hasErrors() || reader->GetErrorCode() != 0)
-        fail(path, 0,
-             "VTK could not read '" + path + "'" + (catcher.hasErrors() ? ": " + catcher.errors() : std::string()) +
-                 "; check that the file is a complete VTK XML unstructured grid");
+    if (catcher.hasErrors() || reader->GetErrorCode() != 0) {
+        const std::string errors = catcher.hasErrors() ? catcher.errors() : std::string();
+        const std::string message = "VTK could not read '" + path + "'" + (errors.empty() ? "" : ": " + errors) +
+                                    "; check that the file is a complete VTK XML unstructured grid";
+        if (const long long byte = parserByte(errors); byte >= 0) failAtByte(path, byte, message);
+        fail(path, 0, message);
+    }
     return reader->GetOutput();
 }
 
-/// Points, kept cells with their groups, and the cell arrays of grid into b.
-void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder& b) {
+/// Where the grid's cells and points are in the file (VtuLayout, vtuValueBytes): per cell the byte
+/// of its first connectivity value, per point the byte of its x coordinate; a list is empty when the
+/// layout does not give every item (the pieces' counts are not VTK's, an array of unknown type).
+struct GridBytes {
+    std::vector<long long> cells, points;
+};
+GridBytes locate(const VtuLayout& l, vtkUnstructuredGrid* grid) {
+    GridBytes out;
+    unsigned long long cells = 0, points = 0;
+    for (const auto& p : l.pieces) cells += p.cells, points += p.points;
+    auto complete = [](std::vector<long long>& v) {
+        if (std::any_of(v.begin(), v.end(), [](long long b) { return b < 0; })) v.clear();
+    };
+    if (cells == (unsigned long long)grid->GetNumberOfCells()) {
+        vtkIdType c = 0;
+        std::vector<unsigned long long> first;
+        for (const auto& p : l.pieces) {
+            first.clear();
+            unsigned long long k = 0;  // connectivity values of the piece before cell c
+            for (unsigned long long i = 0; i < p.cells; ++i, ++c) {
+                first.push_back(k);
+                k += (unsigned long long)grid->GetCells()->GetCellSize(c);
+            }
+            const auto b = vtuValueBytes(l, p.connectivity, first);
+            out.cells.insert(out.cells.end(), b.begin(), b.end());
+        }
+        complete(out.cells);
+    }
+    if (points == (unsigned long long)grid->GetNumberOfPoints()) {
+        std::vector<unsigned long long> first;
+        for (const auto& p : l.pieces) {
+            first.clear();
+            for (unsigned long long i = 0; i < p.points; ++i) first.push_back(3 * i);
+            const auto b = vtuValueBytes(l, p.points3, first);
+            out.points.insert(out.points.end(), b.begin(), b.end());
+        }
+        complete(out.points);
+    }
+    return out;
+}
+
+/// Points, kept cells with their groups, and the cell arrays of grid into b; the cells and points
+/// located in the file by the layout (errors here and in the mesh validation: "file: byte N:").
+void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, const VtuLayout& layout, MeshBuilder& b) {
     const vtkIdType nPoints = grid->GetNumberOfPoints();
     const vtkIdType nCells = grid->GetNumberOfCells();
-    if (nPoints == 0 && nCells == 0)
-        fail(path, 0, "'" + path + "' has no points and no cells: VTK read an empty grid; is the file complete?");
+    if (nPoints == 0 && nCells == 0) {
+        const std::string message = "'" + path + "' has no points and no cells: VTK read an empty grid; is the file complete?";
+        if (!layout.pieces.empty()) failAtByte(path, (long long)layout.pieces.front().at, message);
+        fail(path, 0, message + " (it has no <Piece>)");
+    }
+    const GridBytes where = locate(layout, grid);
+    b.origin.nodeByte = where.points;
     auto& mesh = b.mesh;
     mesh.points.resize(size_t(nPoints));
     for (vtkIdType i = 0; i < nPoints; ++i) {
@@ -170,14 +235,17 @@ void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder
         nodes.resize(size_t(ids->GetNumberOfIds()));
         for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
             const vtkIdType v = ids->GetId(k);
-            if (v < 0 || v >= nPoints)
-                fail(path, 0,
-                     "cell " + std::to_string(c) + " names point " + std::to_string(v) + ", but the file has " +
-                         plural(nPoints, "point") + " (0-based indices 0 to " + std::to_string(nPoints - 1) + ")");
+            if (v < 0 || v >= nPoints) {
+                const std::string message = "cell " + std::to_string(c) + " names point " + std::to_string(v) +
+                                            ", but the file has " + plural(nPoints, "point") + " (0-based indices 0 to " +
+                                            std::to_string(nPoints - 1) + ")";
+                if (!where.cells.empty()) failAtByte(path, where.cells[size_t(c)], message);
+                fail(path, 0, message);
+            }
             nodes[size_t(k)] = int(v);
         }
         const int group = groups ? int(std::lround(groups->GetComponent(c, 0))) : 0;
-        addVtkCell(b, c, type, nodes.data(), nodes.size(), group, 0);
+        addVtkCell(b, c, type, nodes.data(), nodes.size(), group, 0, where.cells.empty() ? -1 : where.cells[size_t(c)]);
     }
 
     // per-cell arrays with 1 or 3 components, restricted to the volume cells (tets first, then hexes)
@@ -200,12 +268,12 @@ void convertGrid(vtkUnstructuredGrid* grid, const std::string& path, MeshBuilder
 
 void readVtu(const std::string& path, MeshBuilder& b) {
     checkReadable(path);
-    checkVtuHeaders(path);  // before VTK allocates what the file announces
+    const VtuLayout layout = checkVtuHeaders(path);  // before VTK allocates what the file announces
     b.origin.elementWord = "cell";
     VtkMessageCatcher catcher;  // for the whole read: VTK prints nothing to the console
     b.report->format = "VTK XML";
     const vtkSmartPointer<vtkUnstructuredGrid> grid = readXmlGrid(path, catcher);
-    convertGrid(grid, path, b);
+    convertGrid(grid, path, layout, b);
 }
 
 } // namespace fascia::meshio::detail

@@ -21,6 +21,15 @@ constexpr unsigned long long kMaxExpansion = 1032;
 class VtuChecker {
 public:
     VtuChecker(const std::string& text, const std::string& path) : m_t(text), m_path(path) {}
+    /// For vtuValueBytes: the file of a layout the check made (it passed, so nothing here fails).
+    explicit VtuChecker(const VtuLayout& l)
+        : m_t(l.text), m_path(kNoPath), m_header64(l.header64), m_compressed(l.compressed), m_bigEndian(l.bigEndian) {}
+    VtuLayout takeLayout() {
+        m_layout.header64 = m_header64;
+        m_layout.compressed = m_compressed;
+        m_layout.bigEndian = m_bigEndian;
+        return std::move(m_layout);
+    }
 
     void run() {
         const size_t appended = m_t.find("<AppendedData");
@@ -41,6 +50,7 @@ public:
                 m_pieceAt = p;
                 m_points = count(tag, "NumberOfPoints", p);
                 m_cells = count(tag, "NumberOfCells", p);
+                m_layout.pieces.push_back({p, m_points, m_cells, {}, {}});
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
                        name == "FieldData") {
                 context = name;
@@ -191,6 +201,7 @@ private:
         if (context == "Points") m_havePoints = true;
         if (context == "Cells" && name == "types") m_haveTypes = true;
         const int tb = typeBytes(attribute(tag, "type"));
+        VtuArrayLayout where{at, format, bodyStart, false, tb};
         unsigned long long values = 0;
         bool known = true;
         if (format == "ascii" && tb > 0) {  // numbers only: a string array has its own layout
@@ -200,6 +211,8 @@ private:
             const size_t close = m_t.find('<', bodyStart);
             size_t s = bodyStart;
             while (s < m_t.size() && (m_t[s] == ' ' || m_t[s] == '\n' || m_t[s] == '\r' || m_t[s] == '\t')) ++s;
+            where.data = s;
+            where.base64 = true;
             values = announcedBytes(s, close == std::string::npos ? m_t.size() : close, true, at) / unsigned(tb);
         } else if (format == "appended" && tb > 0) {
             if (m_appended == 0) failAt(at, "DataArray " + quoted(name) + " is appended, but the file has no <AppendedData>");
@@ -207,9 +220,15 @@ private:
             const std::string o = attribute(tag, "offset");
             if (std::from_chars(o.data(), o.data() + o.size(), off).ec != std::errc() || off > m_t.size() - m_appended)
                 failAt(at, "DataArray " + quoted(name) + " has the offset " + quoted(o) + ", past the end of the appended data");
-            values = announcedBytes(m_appended + size_t(off), m_t.size(), m_appendedBase64, at) / unsigned(tb);
+            where.data = m_appended + size_t(off);
+            where.base64 = m_appendedBase64;
+            values = announcedBytes(where.data, m_t.size(), m_appendedBase64, at) / unsigned(tb);
         } else {
             known = false;  // a type or format VTK itself will judge
+        }
+        if (!m_layout.pieces.empty() && known) {
+            if (context == "Points") m_layout.pieces.back().points3 = where;
+            if (context == "Cells" && name == "connectivity") m_layout.pieces.back().connectivity = where;
         }
         if (known && tuples >= 0 && values != (unsigned long long)tuples * nc)
             failAt(at, "DataArray " + quoted(name) + " of " + context + " holds " + std::to_string(values) +
@@ -229,8 +248,34 @@ private:
         return n;
     }
 
+public:
+    /// vtuValueBytes (VTUHeaderCheck.h).
+    std::vector<long long> valueBytes(const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) const;
+
+private:
+    /// The character of base64 text from `at` (up to `end`) that starts the 4-character group
+    /// holding decoded byte q, whitespace skipped; -1 past the end. Forward only: q never decreases
+    /// between calls on one cursor.
+    struct Base64Cursor {
+        const std::string& t;
+        size_t p, end;
+        unsigned long long chars = 0;  ///< base64 characters before p
+        long long at(unsigned long long q) {
+            const unsigned long long want = q / 3 * 4;
+            for (; p < end; ++p) {
+                const char c = t[p];
+                if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+                if (chars == want) return (long long)p;
+                ++chars;
+            }
+            return -1;
+        }
+    };
+    static inline const std::string kNoPath;
+
     const std::string& m_t;
     const std::string& m_path;
+    VtuLayout m_layout;
     bool m_header64 = false, m_compressed = false, m_bigEndian = false, m_appendedBase64 = false;
     unsigned long long m_points = 0, m_cells = 0;
     size_t m_appended = 0, m_pieceAt = 0;
@@ -239,9 +284,74 @@ private:
 
 } // namespace
 
-void checkVtuHeaders(const std::string& path) {
-    const std::string text = readWholeFile(path, true);
-    VtuChecker(text, path).run();
+std::vector<long long> VtuChecker::valueBytes(const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) const {
+    std::vector<long long> out(indices.size(), -1);
+    if (a.tag == 0 || a.typeBytes <= 0) return out;
+    size_t end = m_t.size();
+    if (a.format != "appended") {
+        const size_t close = m_t.find('<', a.data);
+        if (close != std::string::npos) end = close;
+    }
+    size_t k = 0;
+    if (a.format == "ascii") {  // the n-th number
+        unsigned long long n = 0;
+        bool in = false;
+        for (size_t p = a.data; p < end && k < out.size(); ++p) {
+            const char c = m_t[p];
+            const bool space = c == ' ' || c == '\n' || c == '\r' || c == '\t';
+            if (!space && !in) {
+                for (; k < out.size() && indices[k] == n; ++k) out[k] = (long long)p;
+                ++n;
+            }
+            in = !space;
+        }
+        return out;
+    }
+    const size_t w = m_header64 ? 8 : 4;
+    const unsigned tb = unsigned(a.typeBytes);
+    if (!m_compressed) {  // one header word, then the values
+        Base64Cursor cursor{m_t, a.data, end};
+        for (; k < out.size(); ++k) {
+            const unsigned long long q = w + indices[k] * tb;
+            if (!a.base64) out[k] = q < end - a.data ? (long long)(a.data + q) : -1;
+            else out[k] = cursor.at(q);
+        }
+        return out;
+    }
+    // compressed: blocks, block size, last block size, then each block's compressed size; the header
+    // and the blocks are encoded apart in base64 (the header's characters first)
+    const unsigned long long blocks = words(a.data, end, a.base64, 1, a.tag)[0];
+    if (blocks == 0) return out;
+    const auto h = words(a.data, end, a.base64, 3 + size_t(blocks), a.tag);
+    const unsigned long long blockSize = h[1], headerBytes = (3 + blocks) * w;
+    const size_t blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+    Base64Cursor cursor{m_t, blockData, end};
+    unsigned long long b = 0, before = 0;  // the block, and the compressed bytes before it
+    for (; k < out.size(); ++k) {
+        if (blockSize == 0) break;
+        const unsigned long long want = indices[k] * tb / blockSize;
+        for (; b < want && b < blocks; ++b) before += h[size_t(3 + b)];
+        if (want >= blocks) break;
+        if (!a.base64) out[k] = before < end - blockData ? (long long)(blockData + before) : -1;
+        else out[k] = cursor.at(before);
+    }
+    return out;
+}
+
+VtuLayout checkVtuHeaders(const std::string& path) {
+    std::string text = readWholeFile(path, true);
+    VtuLayout layout;
+    {
+        VtuChecker checker(text, path);
+        checker.run();
+        layout = checker.takeLayout();
+    }
+    layout.text = std::move(text);
+    return layout;
+}
+
+std::vector<long long> vtuValueBytes(const VtuLayout& layout, const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) {
+    return VtuChecker(layout).valueBytes(a, indices);
 }
 
 } // namespace fascia::meshio::detail

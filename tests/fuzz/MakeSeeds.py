@@ -2,8 +2,8 @@
 """Writes the generated seeds of tests/fuzz/corpus/ (the copied ones are listed in
 tests/fuzz/corpus/README.md): the unit cube as 5 tetrahedra (the cube of
 plugins/meshio/tests/data/cube.vtk) in the encodings no test file has: Gmsh 2.2 and 4.1 binary,
-legacy VTK BINARY and version 5.1, and .vtu ASCII, inline base64 (UInt32 and UInt64 headers),
-zlib-compressed and appended raw. Run from the repository root: python3 tests/fuzz/MakeSeeds.py"""
+legacy VTK BINARY and version 5.1, .vtu ASCII, inline base64 (UInt32 and UInt64 headers),
+zlib-compressed and appended raw, and its boundary as STL (ASCII, binary) and OBJ surfaces. Run from the repository root: python3 tests/fuzz/MakeSeeds.py"""
 import base64
 import os
 import struct
@@ -13,6 +13,8 @@ CORPUS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
 TETS = [(0, 1, 3, 4), (2, 3, 1, 6), (5, 4, 6, 1), (7, 6, 4, 3), (1, 3, 4, 6)]
 TRIS = [(0, 3, 1), (1, 3, 2)]
+# the cube's boundary as 6 quadrilaterals, counter-clockwise seen from outside
+QUADS = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (2, 3, 7, 6), (0, 4, 7, 3), (1, 2, 6, 5)]
 
 
 def write(folder, name, data):
@@ -130,6 +132,46 @@ def vtu(mode, header="UInt64"):
     return out + b"</VTKFile>\n"
 
 
+def cube_triangles():
+    return [(q[0], q[1], q[2]) for q in QUADS] + [(q[0], q[2], q[3]) for q in QUADS]
+
+
+def sized(data, parity):
+    """data padded with a trailing newline to the size parity the surface target reads as .stl (0)
+    or .obj (1) (tests/fuzz/FuzzSurface.cpp)."""
+    return data + b"\n" if len(data) % 2 != parity else data
+
+
+def stl_ascii():
+    out = b"solid cube\n"
+    for t in cube_triangles():
+        out += b"  facet normal 0 0 0\n    outer loop\n"
+        out += b"".join(b"      vertex %d %d %d\n" % POINTS[n] for n in t)
+        out += b"    endloop\n  endfacet\n"
+    return sized(out + b"endsolid cube\n", 0)
+
+
+def stl_binary(header=b"binary STL: the unit cube, 12 triangles"):
+    tris = cube_triangles()
+    out = header.ljust(80, b" ") + struct.pack("<I", len(tris))
+    for t in tris:
+        out += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *POINTS[n]) for n in t) + b"\0\0"
+    return out
+
+
+def obj(quads):
+    out = b"# the unit cube\nmtllib cube.mtl\no cube\n" + b"".join(b"v %d %d %d\n" % p for p in POINTS)
+    out += b"vn 0 0 1\nvt 0 0\ng faces\nusemtl skin\ns off\n"
+    if quads:  # every corner form: i, i/t, i//n, i/t/n, and negative (relative) indices
+        forms = [b"%d", b"%d/1", b"%d//1", b"%d/1/1"]
+        for k, q in enumerate(QUADS):
+            corners = [forms[(k + c) % 4] % (n + 1) if k % 2 == 0 else b"%d" % (n - len(POINTS)) for c, n in enumerate(q)]
+            out += b"f " + b" ".join(corners) + b"\n"
+    else:
+        out += b"".join(b"f %d %d %d\n" % tuple(n + 1 for n in t) for t in cube_triangles())
+    return sized(out + b"l 1 2\n", 1)
+
+
 write("gmsh", "cube_gmsh22_binary.msh", gmsh22_binary())
 write("gmsh", "cube_gmsh41_binary.msh", gmsh41_binary())
 write("legacy_vtk", "cube_binary.vtk", vtk_legacy_binary())
@@ -141,3 +183,8 @@ write("vtu", "cube_base64_uint64.vtu", vtu("base64"))
 write("vtu", "cube_base64_uint32.vtu", vtu("base64", "UInt32"))
 write("vtu", "cube_zlib.vtu", vtu("zlib"))
 write("vtu", "cube_appended_raw.vtu", vtu("appended"))
+write("surface", "cube_ascii.stl", stl_ascii())
+write("surface", "cube_binary.stl", stl_binary())
+write("surface", "cube_binary_solid_header.stl", stl_binary(b"solid cube (a binary file whose header says solid)"))
+write("surface", "cube_triangles.obj", obj(False))
+write("surface", "cube_quads.obj", obj(True))

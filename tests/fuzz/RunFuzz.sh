@@ -12,7 +12,7 @@ build=${1:?usage: RunFuzz.sh BUILD_DIR SECONDS [TARGET...]}
 seconds=${2:?usage: RunFuzz.sh BUILD_DIR SECONDS [TARGET...]}
 shift 2
 src=$(cd "$(dirname "$0")" && pwd)
-targets=${*:-scene gmsh legacy_vtk vtu tetgen}
+targets=${*:-scene gmsh legacy_vtk vtu tetgen surface}
 # one thread (an OpenMP pool per input is wasted work here); LSan, UBSan and the suppressions of
 # tests/sanitizer (docs/robustness.md)
 export OMP_NUM_THREADS=1

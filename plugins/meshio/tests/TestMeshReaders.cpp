@@ -20,8 +20,10 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -902,6 +904,107 @@ TEST_CASE("A .vtu whose data headers or counts lie is a located error before VTK
         requireErrorAtByte(p, tag, {"DataArray 'types' of Cells holds 7 values",
                                       "NumberOfCells 8 needs 8"});
     }
+}
+
+/// The unit cube of cubeGrid() as 5 tetrahedra only, the second one inverted (nodes 3 2 1 6).
+vtkNew<vtkUnstructuredGrid> invertedCubeGrid() {
+    vtkNew<vtkUnstructuredGrid> g;
+    vtkNew<vtkPoints> pts;
+    pts->SetDataTypeToDouble();
+    const double c[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    for (const auto& p : c) pts->InsertNextPoint(p);
+    g->SetPoints(pts);
+    const vtkIdType tets[5][4] = {{0, 1, 3, 4}, {3, 2, 1, 6}, {5, 4, 6, 1}, {7, 6, 4, 3}, {1, 3, 4, 6}};
+    for (const auto& t : tets) g->InsertNextCell(VTK_TETRA, 4, t);
+    return g;
+}
+
+/// A .vtu of grid in one of VTK's encodings: "ascii", "binary" (inline base64), "appended-base64",
+/// "appended-raw", each uncompressed, or zlib-compressed: "binary-zlib", "appended-base64-zlib",
+/// "appended-zlib" (raw).
+std::string writeVtuAs(const std::string& name, vtkUnstructuredGrid* grid, const std::string& mode) {
+    const std::string path = tmp().file(name);
+    vtkNew<vtkXMLUnstructuredGridWriter> w;
+    w->SetFileName(path.c_str());
+    w->SetInputData(grid);
+    const bool zlib = mode.find("zlib") != std::string::npos;
+    if (mode == "ascii") w->SetDataModeToAscii();
+    else if (mode.rfind("binary", 0) == 0) w->SetDataModeToBinary();
+    else w->SetDataModeToAppended();
+    if (mode == "appended-raw" || mode == "appended-zlib") w->EncodeAppendedDataOff();
+    if (zlib) w->SetCompressorTypeToZLib();
+    else w->SetCompressorTypeToNone();
+    REQUIRE(w->Write() == 1);
+    return path;
+}
+
+/// Where, in a .vtu that VTK wrote, value k of the DataArray named `array` is, computed from the
+/// file's own tags: ascii, the k-th number; base64, the 4-character group of its first byte;
+/// appended raw, its first byte; zlib (one block), the block's first byte (base64: the header's
+/// 4 words are encoded apart, then the block).
+size_t expectedValueByte(const std::string& text, const std::string& array, size_t k, const std::string& mode) {
+    const size_t tag = tagOffset(text, "Name=\"" + array + "\"");
+    const std::string tagText = text.substr(tag, text.find('>', tag) - tag);
+    const size_t tb = tagText.find("64\"") != std::string::npos ? 8 : tagText.find("32\"") != std::string::npos ? 4 : 1;
+    const size_t w = text.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
+    if (mode == "ascii") {
+        size_t p = text.find('>', tag) + 1, n = 0;
+        for (;; ++p) {
+            while (std::isspace((unsigned char)text[p])) ++p;
+            if (n++ == k) return p;
+            while (!std::isspace((unsigned char)text[p])) ++p;
+        }
+    }
+    size_t data = 0;
+    if (mode.rfind("binary", 0) == 0) {
+        data = text.find('>', tag) + 1;
+        while (std::isspace((unsigned char)text[data])) ++data;
+    } else {
+        const size_t o = tagText.find("offset=\"");
+        data = text.find('_', text.find("<AppendedData")) + 1 + std::stoul(tagText.substr(o + 8));
+    }
+    if (mode == "binary" || mode == "appended-base64") return data + (w + k * tb) / 3 * 4;
+    if (mode == "appended-raw") return data + w + k * tb;
+    if (mode == "appended-zlib") return data + 4 * w;  // one block, after the 4 header words
+    return data + (4 * w + 2) / 3 * 4;                 // base64 zlib: the header's characters, then the block
+}
+
+TEST_CASE("Errors found after VTK read a .vtu are located at the byte of the cell or point", "[MeshLoader][errors]") {
+    const std::string mode = GENERATE(as<std::string>{}, "ascii", "binary", "appended-base64", "appended-raw", "binary-zlib",
+                                      "appended-base64-zlib", "appended-zlib");
+    CAPTURE(mode);
+    vtkNew<vtkUnstructuredGrid> g = invertedCubeGrid();
+    SECTION("an inverted cell: at its first connectivity value (value 4)") {
+        const std::string p = writeVtuAs("inverted_" + mode + ".vtu", g, mode);
+        const std::string text = slurp(p);
+        const size_t at = expectedValueByte(text, "connectivity", 4, mode);
+        requireErrorAtByte(p, at, {"cell 1 (a tetrahedron) is inverted", "fixOrientation"});
+        if (mode == "ascii") CHECK(text.substr(at, 2) == "3 ");  // the cell's first node
+        if (mode == "appended-raw") {
+            long long first = -1;
+            std::memcpy(&first, text.data() + at, 8);
+            CHECK(first == 3);
+        }
+    }
+    if (mode == "appended-raw")
+        SECTION("a non-finite point coordinate: at the point's x") {
+            g->GetPoints()->SetPoint(2, std::nan(""), 1, 0);
+            const std::string p = writeVtuAs("nan_point.vtu", g, mode);
+            const std::string text = slurp(p);
+            const size_t at = expectedValueByte(text, "Points", 3 * 2, mode);
+            double x = 0;
+            std::memcpy(&x, text.data() + at, 8);
+            CHECK(std::isnan(x));
+            requireErrorAtByte(p, at, {"node 2 has a non-finite coordinate"});
+        }
+    if (mode == "ascii")
+        SECTION("an empty grid: at its Piece") {
+            vtkNew<vtkUnstructuredGrid> empty;
+            vtkNew<vtkPoints> none;
+            empty->SetPoints(none);
+            const std::string p = writeVtuAs("empty.vtu", empty, mode);
+            requireErrorAtByte(p, slurp(p).find("<Piece"), {"has no points and no cells"});
+        }
 }
 
 /// What the VTK-based legacy reader of earlier versions made of a .vtk file: VTK's own legacy

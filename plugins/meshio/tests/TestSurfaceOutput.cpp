@@ -403,3 +403,59 @@ TEST_CASE("The liver-size organ's finer visual surface is found in the mesh and 
     CHECK(moved > 0);
     sim->finish();
 }
+
+namespace {
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+} // namespace
+
+TEST_CASE("A restored run continues the surface series like the volume one: the same .pvd files and file set",
+          "[VTKExporter][BarycentricSurfaceMapping][Simulation]") {
+    // a soft box sagging under gravity, held at xmin: the volume and surface series every 3 steps, the
+    // mapped surface every 4; 24 steps straight against 12, a checkpoint, a restore and 12
+    const fs::path a = freshDir("restart-straight"), b = freshDir("restart-restarted"), ck = freshDir("restart-ckpt") / "box.ckpt";
+    writeText(a / "visual.obj", boxSurfaceObj(Vec3(0, 0, 0), Vec3(0.2, 0.1, 0.1), 2));
+    writeText(b / "visual.obj", slurp(a / "visual.obj"));
+    const std::string xml = "<Node name=\"root\" dt=\"0.0005\" gravity=\"0 0 -9.81\">\n"
+                            "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.2 0.1 0.1\" resolution=\"4 2 2\" element=\"tetrahedra5\"/>\n"
+                            "  <MechanicalObject name=\"state\"/>\n  <LumpedMass density=\"1000\"/>\n"
+                            "  <NeoHookean mu=\"3000\" kappa=\"30000\"/>\n  <HEMLForceField/>\n  <SemiImplicitEuler damping=\"5\"/>\n"
+                            "  <FixedConstraint group=\"xmin\"/>\n"
+                            "  <VTKExporter name=\"out\" every=\"3\" surface=\"true\"/>\n"
+                            "  <BarycentricSurfaceMapping name=\"visual\" filename=\"visual.obj\" output=\"skin\" every=\"4\"/>\n"
+                            "</Node>\n";
+    {
+        auto sim = Simulation::fromString(xml, "scene.xml", a.string(), {a.string(), 0});
+        sim->run(24);
+        sim->finish();
+    }
+    {
+        auto first = Simulation::fromString(xml, "scene.xml", b.string(), {b.string(), 0});
+        first->run(12);
+        first->save(ck.string());
+        first->finish();
+    }
+    auto second = Simulation::fromString(xml, "scene.xml", b.string(), {b.string(), 0});
+    second->restore(ck.string());
+    second->run(12);
+    second->finish();
+    CHECK(pvdFiles(b / "out_surface.pvd").size() == 9);  // steps 0, 3 ... 24
+    CHECK(pvdFiles(b / "skin.pvd").size() == 7);         // steps 0, 4 ... 24
+    std::vector<std::string> na, nb;
+    for (auto& e : fs::directory_iterator(a)) na.push_back(e.path().filename().string());
+    for (auto& e : fs::directory_iterator(b)) nb.push_back(e.path().filename().string());
+    std::sort(na.begin(), na.end());
+    std::sort(nb.begin(), nb.end());
+    CHECK(na == nb);
+    for (const std::string pvd : {"out.pvd", "out_surface.pvd", "skin.pvd"}) {
+        CAPTURE(pvd);
+        REQUIRE(fs::exists(b / pvd));
+        CHECK(slurp(a / pvd) == slurp(b / pvd));
+    }
+    CHECK(slurp(a / "out_surface_000024.vtp") == slurp(b / "out_surface_000024.vtp"));
+    CHECK(slurp(a / "skin_000024.vtp") == slurp(b / "skin_000024.vtp"));
+}

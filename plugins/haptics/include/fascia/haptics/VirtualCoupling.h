@@ -17,6 +17,11 @@
 #include <cstdint>
 #include <mutex>
 
+namespace fascia::core {
+class StateWriter;
+class StateReader;
+} // namespace fascia::core
+
 namespace fascia::haptics {
 
 /// What one side publishes: a position, a velocity and (tool side) the contact force, with a
@@ -65,6 +70,15 @@ public:
     /// Device thread: the force felt for the device at (x, v) against the latest tool sample (zero
     /// before the simulation published one), and that sample's sequence number in `sequence`.
     Vec3 forceFelt(const Vec3& x, const Vec3& v, std::uint64_t* sequence = nullptr) const;
+
+    /// What the coupling carries from one step to the next, as checkpoint records
+    /// (fascia/base/StateIO.h): proxy()'s filtered contact force and the latest sample of each side.
+    /// It is no scene component, so Simulation::save does not hold it: an embedding program that
+    /// checkpoints its simulation writes these records beside it, and restoreState() (on a coupling of
+    /// the same stiffness, damping and filter time) continues bitwise; a record of the wrong name or
+    /// size is an error of the reader.
+    void saveState(core::StateWriter& out) const;
+    void restoreState(core::StateReader& in);
 
 private:
     double m_k, m_c, m_filterTime;
