@@ -11,8 +11,9 @@
 // interval's median and 99th percentile, the simulation's update rate and its real-time factor.
 // The device loop runs at real-time priority (SCHED_FIFO, where the system permits it: root or
 // CAP_SYS_NICE or an rtprio limit; else it says so in device_thread=) and spins the last `--spin`
-// seconds before each tick, as haptic device loops do: on a loaded two-core machine this took the
-// 99th-percentile interval from 4.8-5.8 ms to 1.00-1.05 ms (docs/performance.md).
+// seconds before each tick (0.5 ms by default: an idle virtual CPU wakes late from a longer sleep),
+// as haptic device loops do: the 99th-percentile interval went from 4.8-5.8 ms to 1.00 ms on a
+// loaded two-core machine, and stays at 1.00 ms on a quiet one (docs/performance.md, "Haptics").
 #include "fascia/base/Error.h"
 #include "fascia/haptics/VirtualCoupling.h"
 #include "fascia/sim/Simulation.h"
@@ -40,7 +41,7 @@ namespace {
 struct Options {
     std::string scene, tool = "probe", output = "haptics_force.csv";
     double seconds = 5, rate = 1000, stiffness = 1000, damping = 1, filterTime = 0.005, depth = 0.008;
-    double spin = 0.0001;    ///< s: the device loop sleeps until this long before a tick, then spins to it
+    double spin = 0.0005;    ///< s: the device loop sleeps until this long before a tick, then spins to it
     bool realtime = true;    ///< ask for SCHED_FIFO for the device loop (falls back when not permitted)
 };
 
