@@ -2,9 +2,12 @@
 #include "fascia/base/Error.h"
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
+#include "fascia/sim/ThreadedStep.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace fascia::core {
@@ -36,35 +39,35 @@ void BaseMechanicalState::restoreState(StateReader& in) {
     in.getInto("externalForce", m_external);
 }
 
-void MechanicalGroup::computeForces(double t) {
-    Positions& f = state->f();
-    const size_t n = f.size();
-    // f starts from the body and external forces (one pass), then every force field adds its own
-    const Positions& ext = state->externalForce();
-    const bool haveExt = ext.size() == n, haveGravity = !gravity.isZero() && mass.size() >= n;
-    double* __restrict fp = flat(f);
-    const double* __restrict ep = flat(ext);
-    const double* __restrict m = mass.data();
+MechanicalGroup::ForceStart MechanicalGroup::forceStart(double t) const {
+    ForceStart s;
+    const size_t n = state->f().size();
+    s.ext = state->externalForce().size() == n;
+    s.gravity = !gravity.isZero() && mass.size() >= n;
     const double c = gravityCurve ? gravityCurve->value(t) : 1.0;
-    const double g[3] = {c * gravity[0], c * gravity[1], c * gravity[2]};
-    forEachNodeRange(static_cast<long>(n), [&](long lo, long hi) {
-        if (haveExt && haveGravity) {
-            for (long i = lo; i < hi; ++i)
-                for (int c = 0; c < 3; ++c) fp[3 * i + c] = ep[3 * i + c] + m[i] * g[c];
-        } else if (haveGravity) {
-            for (long i = lo; i < hi; ++i)
-                for (int c = 0; c < 3; ++c) fp[3 * i + c] = m[i] * g[c];
-        } else if (haveExt) {
-            std::copy(ep + 3 * lo, ep + 3 * hi, fp + 3 * lo);
-        } else {
-            std::fill(fp + 3 * lo, fp + 3 * hi, 0.0);
-        }
-    });
-    for (auto* ff : forceFields) {
-        ScopedTimer timer(ff->timer());
-        ff->addForce(*state, f, t);
+    for (int k = 0; k < 3; ++k) s.g[k] = c * gravity[k];
+    return s;
+}
+
+void MechanicalGroup::initialForces(const ForceStart& s, long lo, long hi) {
+    double* __restrict fp = flat(state->f());
+    const double* __restrict ep = flat(state->externalForce());
+    const double* __restrict m = mass.data();
+    const double* g = s.g;
+    if (s.ext && s.gravity) {
+        for (long i = lo; i < hi; ++i)
+            for (int c = 0; c < 3; ++c) fp[3 * i + c] = ep[3 * i + c] + m[i] * g[c];
+    } else if (s.gravity) {
+        for (long i = lo; i < hi; ++i)
+            for (int c = 0; c < 3; ++c) fp[3 * i + c] = m[i] * g[c];
+    } else if (s.ext) {
+        std::copy(ep + 3 * lo, ep + 3 * hi, fp + 3 * lo);
+    } else {
+        std::fill(fp + 3 * lo, fp + 3 * hi, 0.0);
     }
-    if (constraints.empty()) return;
+}
+
+void MechanicalGroup::prepareReactions() {
     // one reaction per node, whatever the number of constraints acting on it: minus what the
     // constraints removed, recorded at the constrained nodes only (a node listed twice is harmless)
     Positions& r = state->reaction();
@@ -75,6 +78,11 @@ void MechanicalGroup::computeForces(double t) {
         const IndexList& nodes = c->constrainedNodes();
         reactionNodes.insert(reactionNodes.end(), nodes.begin(), nodes.end());
     }
+}
+
+void MechanicalGroup::applyConstraints() {
+    Positions& f = state->f();
+    Positions& r = state->reaction();
     beforeConstraints.resize(reactionNodes.size());
     for (size_t k = 0; k < reactionNodes.size(); ++k) beforeConstraints[k] = f[size_t(reactionNodes[k])];
     for (auto* c : constraints) {
@@ -85,6 +93,21 @@ void MechanicalGroup::computeForces(double t) {
         const size_t i = size_t(reactionNodes[k]);
         r[i] = f[i] - beforeConstraints[k];
     }
+}
+
+void MechanicalGroup::computeForces(double t) {
+    chunkReady.clear();
+    Positions& f = state->f();
+    // f starts from the body and external forces (one pass), then every force field adds its own
+    const ForceStart start = forceStart(t);
+    forEachNodeRange(static_cast<long>(f.size()), [&](long lo, long hi) { initialForces(start, lo, hi); });
+    for (auto* ff : forceFields) {
+        ScopedTimer timer(ff->timer());
+        ff->addForce(*state, f, t);
+    }
+    if (constraints.empty()) return;
+    prepareReactions();
+    applyConstraints();
 }
 
 double MechanicalGroup::residualNorm(double t) {
@@ -136,24 +159,36 @@ std::string vecText(const Vec3& v) {
 }
 } // namespace
 
-void MechanicalGroup::checkStep(double t) {
-    // one pass over x, v and the masses: per chunk the finite probe of x and v and the kinetic energy
+void MechanicalGroup::checkChunk(long c, long lo, long hi) {
     const long n = static_cast<long>(std::min(state->x().size(), state->v().size()));
     const double* xp = flat(state->x());
     const double* vp = flat(state->v());
     const double* mp = mass.size() >= size_t(n) ? mass.data() : nullptr;
-    const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
-    chunkSums.assign(2 * size_t(chunks), 0.0);
     double* sums = chunkSums.data();
-    forEachNodeRange(n, [&](long lo, long hi) {
-        const long c = lo / kNodeChunk;
-        sums[2 * c] = finiteProbe(xp + 3 * lo, vp + 3 * lo, 3 * (hi - lo));
-        double e[4] = {0, 0, 0, 0};
-        if (mp)
-            for (long i = lo; i < hi; ++i)
-                e[i & 3] += mp[i] * (vp[3 * i] * vp[3 * i] + vp[3 * i + 1] * vp[3 * i + 1] + vp[3 * i + 2] * vp[3 * i + 2]);
-        sums[2 * c + 1] = 0.5 * ((e[0] + e[1]) + (e[2] + e[3]));
-    });
+    sums[2 * c] = finiteProbe(xp + 3 * lo, vp + 3 * lo, 3 * (hi - lo));
+    double e[4] = {0, 0, 0, 0};
+    if (mp)
+        for (long i = lo; i < hi; ++i)
+            e[i & 3] += mp[i] * (vp[3 * i] * vp[3 * i] + vp[3 * i + 1] * vp[3 * i + 1] + vp[3 * i + 2] * vp[3 * i + 2]);
+    sums[2 * c + 1] = 0.5 * ((e[0] + e[1]) + (e[2] + e[3]));
+}
+
+void MechanicalGroup::checkStep(double t) {
+    // one pass over x, v and the masses: per chunk the finite probe of x and v and the kinetic energy
+    const long n = static_cast<long>(std::min(state->x().size(), state->v().size()));
+    const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
+    const double* sums = chunkSums.data();
+    if (chunkReady.size() == size_t(chunks) && chunkSums.size() == 2 * size_t(chunks)) {
+        // the threaded step computed the sums of the chunks no constraint touches; here the others,
+        // after the constraints' projection (ThreadedStep.h)
+        for (long c = 0; c < chunks; ++c)
+            if (!chunkReady[size_t(c)]) checkChunk(c, c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
+    } else {
+        chunkSums.assign(2 * size_t(chunks), 0.0);
+        sums = chunkSums.data();
+        forEachNodeRange(n, [&](long lo, long hi) { checkChunk(lo / kNodeChunk, lo, hi); });
+    }
+    chunkReady.clear();
     double probe = 0, ke = 0;
     for (long c = 0; c < chunks; ++c) probe += sums[2 * c], ke += sums[2 * c + 1];  // in chunk order
     if (!std::isfinite(probe) || state->x().size() != state->v().size()) checkFinite(t);
@@ -219,5 +254,74 @@ void MechanicalGroup::checkFinite(double t) {
                          "': the simulation is unstable (time step above the critical one, or an exploding force); "
                          "try a smaller dt or dt=\"auto\"");
 }
+
+namespace {
+std::atomic<TaskHook> g_taskHook{nullptr};
+bool threadedDefault() {
+    const char* e = std::getenv("FASCIA_THREADED_STEP");
+    return !(e && e[0] == '0');
+}
+std::atomic<bool> g_threaded{threadedDefault()};
+} // namespace
+
+namespace {
+bool adaptiveDefault() {
+    const char* e = std::getenv("FASCIA_ADAPTIVE_TEAM");
+    return !(e && e[0] == '0');
+}
+std::atomic<bool> g_adaptive{adaptiveDefault()};
+} // namespace
+
+namespace {
+bool ownedDefault() {
+    const char* e = std::getenv("FASCIA_HANDOUT");
+    return !(e && std::string(e) == "shared");
+}
+std::atomic<bool> g_owned{ownedDefault()};
+} // namespace
+
+void setOwnedRanges(bool on) { g_owned.store(on); }
+bool ownedRanges() { return g_owned.load(std::memory_order_relaxed); }
+
+void setAdaptiveTeam(bool on) { g_adaptive.store(on); }
+bool adaptiveTeamEnabled() { return g_adaptive.load(std::memory_order_relaxed); }
+
+int TeamChoice::choose() {
+    ++step;
+    if (probing == 0 && step >= nextProbe) {
+        probing = kProbe;
+        count[1 - current] = 0;  // the probe's own steps only: the load may have changed since the last
+    }
+    return probing > 0 ? 1 - current : current;
+}
+
+void TeamChoice::record(int t, double s) {
+    seconds[t][count[t] % kKeep] = s;
+    ++count[t];
+    if (t == current || probing == 0 || --probing > 0) return;
+    // the end of a probe: switch when the other team's recent steps are 10 % faster on average
+    if (mean(t) < 0.9 * mean(current)) {
+        current = t;
+        interval = 16;
+    } else {
+        interval = std::min(2 * interval, 1024L);
+    }
+    nextProbe = step + interval;
+}
+
+double TeamChoice::mean(int t) const {
+    // the mean, not the median: a descheduled thread makes a few steps very slow, and those set the
+    // throughput (a median of them looked fine while the mean was ten times the one-thread step)
+    const int n = std::min(count[t], kKeep);
+    if (n == 0) return INFINITY;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += seconds[t][i];
+    return sum / n;
+}
+
+void setTaskHook(TaskHook hook) { g_taskHook.store(hook); }
+TaskHook taskHook() { return g_taskHook.load(std::memory_order_relaxed); }
+void setThreadedStep(bool on) { g_threaded.store(on); }
+bool threadedStepEnabled() { return g_threaded.load(std::memory_order_relaxed); }
 
 } // namespace fascia::core

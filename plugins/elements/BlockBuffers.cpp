@@ -21,36 +21,69 @@ void BlockBuffers::finish(size_t nodeCount, std::vector<int> nodeOf) {
     m_nodes = nodeCount;
     m_nodeOf = std::move(nodeOf);
     m_buf.assign(m_size, 0.0);
+    m_internalOf.clear();
+    m_nodeRowStart.clear();
+    m_nodeRows.clear();
+    if (m_nodeOf.empty()) return;
+    // renumbered: per internal node, its buffer rows in block order, and the state -> internal map
+    int maxState = -1;
+    for (int s : m_nodeOf) maxState = std::max(maxState, s);
+    m_internalOf.assign(size_t(maxState + 1), -1);
+    for (size_t p = 0; p < m_nodeOf.size(); ++p) m_internalOf[size_t(m_nodeOf[p])] = int(p);
+    m_nodeRowStart.assign(m_nodes + 1, 0);
+    const size_t nb = m_lo.size();
+    for (size_t b = 0; b < nb; ++b)
+        for (int p = std::max(0, m_lo[b]); p <= m_hi[b] && size_t(p) < m_nodes; ++p) ++m_nodeRowStart[size_t(p) + 1];
+    for (size_t p = 0; p < m_nodes; ++p) m_nodeRowStart[p + 1] += m_nodeRowStart[p];
+    m_nodeRows.assign(m_nodeRowStart.back(), 0);
+    std::vector<size_t> fill(m_nodeRowStart.begin(), m_nodeRowStart.end() - 1);
+    for (size_t b = 0; b < nb; ++b)
+        for (int p = std::max(0, m_lo[b]); p <= m_hi[b] && size_t(p) < m_nodes; ++p)
+            m_nodeRows[fill[size_t(p)]++] = m_offset[b] + 4 * size_t(p - m_lo[b]);
 }
 
 void BlockBuffers::sumInto(double* fp) {
-    const long nNodes = static_cast<long>(m_nodes);
-    const long nTiles = (nNodes + kNodeTile - 1) / kNodeTile;
-    const bool renumbered = !m_nodeOf.empty();
-    const size_t nb = m_lo.size();
-#pragma omp for schedule(static)
-    for (long tile = 0; tile < nTiles; ++tile) {
-        const int lo = static_cast<int>(tile * kNodeTile);
-        const int hi = static_cast<int>(std::min<long>(nNodes, (tile + 1) * kNodeTile)) - 1;
-        // renumbered nodes: the tile's sums first, in internal order, then into f
-        alignas(64) double acc[3 * kNodeTile];
-        double* __restrict sum = renumbered ? acc : fp + 3 * static_cast<size_t>(lo);
-        if (renumbered) std::fill(acc, acc + 3 * (hi - lo + 1), 0.0);
-        for (size_t b = 0; b < nb; ++b) {
-            const int a = std::max(lo, m_lo[b]), z = std::min(hi, m_hi[b]);
-            if (a > z) continue;
-            double* __restrict src = m_buf.data() + m_offset[b] + 4 * static_cast<size_t>(a - m_lo[b]);
-            double* __restrict dst = sum + 3 * static_cast<size_t>(a - lo);
-            const size_t rows = static_cast<size_t>(z - a + 1);
-            for (size_t k = 0; k < rows; ++k)
-                for (size_t c = 0; c < 3; ++c) dst[3 * k + c] += src[4 * k + c];
-            // cleared while in the cache, for the next evaluation
-            std::fill(src, src + 4 * rows, 0.0);
+    const long n = static_cast<long>(m_nodeOf.empty() ? m_nodes : m_internalOf.size());
+    const long nTiles = (n + kNodeTile - 1) / kNodeTile;
+#pragma omp for schedule(dynamic, 1)
+    for (long tile = 0; tile < nTiles; ++tile) sumRange(fp, tile * kNodeTile, std::min(n, (tile + 1) * kNodeTile));
+}
+
+void BlockBuffers::sumRange(double* fp, long lo, long hi) {
+    if (!m_nodeOf.empty()) {
+        // renumbered: each state node's rows, in block order, from 0, then into f
+        hi = std::min(hi, static_cast<long>(m_internalOf.size()));
+        for (long i = lo; i < hi; ++i) {
+            const int p = m_internalOf[size_t(i)];
+            if (p < 0) continue;
+            double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+            for (size_t k = m_nodeRowStart[size_t(p)]; k < m_nodeRowStart[size_t(p) + 1]; ++k) {
+                double* __restrict r = m_buf.data() + m_nodeRows[k];
+                a0 += r[0];
+                a1 += r[1];
+                a2 += r[2];
+                r[0] = r[1] = r[2] = r[3] = 0.0;  // cleared for the next evaluation
+            }
+            double* __restrict q = fp + 3 * size_t(i);
+            q[0] += a0;
+            q[1] += a1;
+            q[2] += a2;
         }
-        for (int q = lo; q <= hi && renumbered; ++q) {
-            double* __restrict dst = fp + 3 * static_cast<size_t>(m_nodeOf[static_cast<size_t>(q)]);
-            for (size_t c = 0; c < 3; ++c) dst[c] += acc[3 * static_cast<size_t>(q - lo) + c];
-        }
+        return;
+    }
+    // the tile [lo, hi) of node rows: every block that covers part of it, in block order
+    const int a0 = static_cast<int>(lo), z0 = static_cast<int>(std::min<long>(hi, static_cast<long>(m_nodes))) - 1;
+    double* __restrict sum = fp + 3 * static_cast<size_t>(lo);
+    for (size_t b = 0; b < m_lo.size(); ++b) {
+        const int a = std::max(a0, m_lo[b]), z = std::min(z0, m_hi[b]);
+        if (a > z) continue;
+        double* __restrict src = m_buf.data() + m_offset[b] + 4 * static_cast<size_t>(a - m_lo[b]);
+        double* __restrict dst = sum + 3 * static_cast<size_t>(a - a0);
+        const size_t rows = static_cast<size_t>(z - a + 1);
+        for (size_t k = 0; k < rows; ++k)
+            for (size_t c = 0; c < 3; ++c) dst[3 * k + c] += src[4 * k + c];
+        // cleared while in the cache, for the next evaluation
+        std::fill(src, src + 4 * rows, 0.0);
     }
 }
 
@@ -78,6 +111,10 @@ size_t CompactBlockBuffers::addBlock(std::initializer_list<Nodes> parts) {
 void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
     m_nodeOf = std::move(nodeOf);
     const size_t n = m_nodeOf.size(), rows = m_rowInternal.size();
+    int maxState = -1;
+    for (int s : m_nodeOf) maxState = std::max(maxState, s);
+    m_internalOf.assign(size_t(maxState + 1), -1);
+    for (size_t p = 0; p < n; ++p) m_internalOf[size_t(m_nodeOf[p])] = int(p);
     m_rowNode.resize(rows);
     for (size_t r = 0; r < rows; ++r) m_rowNode[r] = m_nodeOf[static_cast<size_t>(m_rowInternal[r])];
     m_directGather = n * 3 * sizeof(double) <= (size_t(1) << 19);
@@ -95,31 +132,46 @@ void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
 
 const double* CompactBlockBuffers::positionsIn(const double* x) {
     if (m_directGather) return x;
-    const size_t n = m_nodeOf.size();
-#pragma omp for schedule(static)
-    for (size_t p = 0; p < n; ++p) {
-        const double* s = x + 3 * size_t(m_nodeOf[p]);
-        double* q = m_xin.data() + 4 * p;
+    const long n = static_cast<long>(m_nodeOf.size());
+    const long nTiles = (n + kNodeTile - 1) / kNodeTile;
+#pragma omp for schedule(dynamic, 1)
+    for (long tile = 0; tile < nTiles; ++tile) positionsRange(x, tile * kNodeTile, std::min(n, (tile + 1) * kNodeTile));
+    return m_xin.data();
+}
+
+void CompactBlockBuffers::positionsRange(const double* x, long lo, long hi) {
+    if (m_directGather) return;
+    for (long p = lo; p < hi; ++p) {
+        const double* s = x + 3 * size_t(m_nodeOf[size_t(p)]);
+        double* q = m_xin.data() + 4 * size_t(p);
         q[0] = s[0];
         q[1] = s[1];
         q[2] = s[2];
         q[3] = 0.0;
     }
-    return m_xin.data();
 }
 
 void CompactBlockBuffers::sumInto(double* fp) const {
-    const size_t n = m_nodeOf.size();
-#pragma omp for schedule(static)
-    for (size_t p = 0; p < n; ++p) {
+    const long n = static_cast<long>(m_internalOf.size());
+    const long nTiles = (n + kNodeTile - 1) / kNodeTile;
+#pragma omp for schedule(dynamic, 1)
+    for (long tile = 0; tile < nTiles; ++tile) sumRange(fp, tile * kNodeTile, std::min(n, (tile + 1) * kNodeTile));
+}
+
+void CompactBlockBuffers::sumRange(double* fp, long lo, long hi) const {
+    // per state node, its internal node's rows in block order (the same sum as per internal node)
+    hi = std::min(hi, static_cast<long>(m_internalOf.size()));
+    for (long i = lo; i < hi; ++i) {
+        const int p = m_internalOf[size_t(i)];
+        if (p < 0) continue;
         double a0 = 0.0, a1 = 0.0, a2 = 0.0;
-        for (int k = m_nodeRowStart[p]; k < m_nodeRowStart[p + 1]; ++k) {
+        for (int k = m_nodeRowStart[size_t(p)]; k < m_nodeRowStart[size_t(p) + 1]; ++k) {
             const double* r = m_buf.data() + 4 * size_t(m_nodeRows[static_cast<size_t>(k)]);
             a0 += r[0];
             a1 += r[1];
             a2 += r[2];
         }
-        double* q = fp + 3 * size_t(m_nodeOf[p]);
+        double* q = fp + 3 * size_t(i);
         q[0] += a0;
         q[1] += a1;
         q[2] += a2;

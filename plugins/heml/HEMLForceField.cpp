@@ -370,6 +370,12 @@ void HEMLForceField::restoreState(core::StateReader& in) {
 void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
     checkState(state);
     if (f.size() != state.size()) elements::runtimeError(*this, "force array of the wrong size");
+    beginForces(state, t);
+    evaluate(m_evalX, f.data()->data());
+}
+
+void HEMLForceField::beginForces(core::BaseMechanicalState& state, double t) {
+    checkState(state);
     HEMLData& d = *m_data;
     if (d.nTerms > 0) {
         // a new time advances the history, over the time elapsed since the last evaluation
@@ -379,7 +385,7 @@ void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
         if (d.clock.beginEvaluation(t, m_visco->dt())) std::swap(d.Yprev, d.Ycur);
         viscoelastic::stepCoefficients(*m_visco, d.clock.elapsed(), m_visco->dt(), d.A, d.B);
     }
-    evaluate(state.x().data()->data(), f.data()->data());
+    m_evalX = core::flat(state.x());
 }
 
 void HEMLForceField::addForceRaw(const double* x, double* fout) {
@@ -396,21 +402,26 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
 }
 
 void HEMLForceField::evaluate(const double* x, double* fout) {
-    HEMLData& d = *m_data;
-    const bool visco = d.nTerms > 0;
-    const size_t nb = d.blocks.size();
-    const bool parallel = nb > 1;
-#pragma omp parallel if (parallel)
-    {
-        const double* xi = d.rows.positionsIn(x);
-        // element blocks, each into its own node rows
-#pragma omp for schedule(dynamic, 1)
-        for (size_t b = 0; b < nb; ++b)
-            d.blockEnergy[b] = visco ? runOne<true, true>(d, b, m_fns, xi) : runOne<true, false>(d, b, m_fns, xi);
-        // per node, sum its rows in block order (deterministic for any thread count)
-        d.rows.sumInto(fout);
-    }
+    // one parallel region: positions in internal order, the element blocks (each into its own node
+    // rows), then per node the sum of its rows in block order (deterministic for any thread count)
+    m_evalX = x;
+    core::runThreadedForces(*this, fout, static_cast<long>(m_data->nNodes));
 }
+
+long HEMLForceField::prepareNodes() const { return m_data->rows.directGather() ? 0 : static_cast<long>(m_data->nNodes); }
+
+void HEMLForceField::prepareRange(long lo, long hi) { m_data->rows.positionsRange(m_evalX, lo, hi); }
+
+long HEMLForceField::forceBlocks() const { return static_cast<long>(m_data->blocks.size()); }
+
+void HEMLForceField::runForceBlock(long bl) {
+    HEMLData& d = *m_data;
+    const size_t b = static_cast<size_t>(bl);
+    const double* xi = d.rows.positionsBase(m_evalX);
+    d.blockEnergy[b] = d.nTerms > 0 ? runOne<true, true>(d, b, m_fns, xi) : runOne<true, false>(d, b, m_fns, xi);
+}
+
+void HEMLForceField::sumForceRange(double* f, long lo, long hi) { m_data->rows.sumRange(f, lo, hi); }
 
 double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
     checkState(state);

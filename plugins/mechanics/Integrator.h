@@ -2,6 +2,7 @@
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/ThreadedStep.h"
 
 #include <string>
 
@@ -22,20 +23,28 @@ inline core::BaseMechanicalState& savedState(const core::Component& owner, core:
     return *s;
 }
 
-/// Runs update(x, v, f, 1/m) on every component of every node of the group's state (x and v by
-/// reference), on the flat arrays so that the compiler vectorises it (core::forEachNodeRange).
+/// Runs update(x, v, f, 1/m) on every component of the nodes [lo, hi) of the group's state (x and v by
+/// reference), on the flat arrays so that the compiler vectorises it.
 template <class Update>
-inline void updateNodes(core::MechanicalGroup& g, Update&& update) {
+inline void updateRange(core::MechanicalGroup& g, long lo, long hi, Update&& update) {
     const double* __restrict invMass = g.invMass.data();
     double* __restrict xp = core::flat(g.state->x());
     double* __restrict vp = core::flat(g.state->v());
     const double* __restrict fp = core::flat(g.state->f());
-    core::forEachNodeRange(static_cast<long>(g.state->x().size()), [&](long lo, long hi) {
-        for (long i = lo; i < hi; ++i) {
-            const double m = invMass[i];
-            for (long c = 3 * i; c < 3 * i + 3; ++c) update(xp[c], vp[c], fp[c], m);
-        }
-    });
+    for (long i = lo; i < hi; ++i) {
+        const double m = invMass[i];
+        for (long c = 3 * i; c < 3 * i + 3; ++c) update(xp[c], vp[c], fp[c], m);
+    }
+}
+
+/// The forces at time t, then update(x, v, f, 1/m) on every component of every node: in one parallel
+/// region with the forces when the group's force fields allow it (core::stepThreaded), else
+/// computeForces and then the update by chunks (core::forEachNodeRange). The same bits either way.
+template <class Update>
+inline void forcesThenUpdate(core::MechanicalGroup& g, double t, Update&& update) {
+    if (core::stepThreaded(g, t, [&](long lo, long hi) { updateRange(g, lo, hi, update); })) return;
+    g.computeForces(t);
+    core::forEachNodeRange(static_cast<long>(g.state->x().size()), [&](long lo, long hi) { updateRange(g, lo, hi, update); });
 }
 
 } // namespace fascia::mechanics

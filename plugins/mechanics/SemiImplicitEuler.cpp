@@ -6,7 +6,6 @@
 namespace fascia::mechanics {
 
 void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
-    g.computeForces(t);
     const double alpha = m_damping.get();
     auto it = std::find_if(m_lastDt.begin(), m_lastDt.end(), [&](const auto& s) { return s.first == g.state; });
     double kick = dt;
@@ -19,7 +18,7 @@ void SemiImplicitEuler::step(core::MechanicalGroup& g, double t, double dt) {
         if (m_halfStepStart.get()) kick = 0.5 * (it->second + dt);
         it->second = dt;
     }
-    updateNodes(g, [=](double& x, double& v, double f, double invMass) {
+    forcesThenUpdate(g, t, [=](double& x, double& v, double f, double invMass) {
         v += kick * (invMass * f - alpha * v);  // HEML eq. (32), first line
         x += dt * v;                            // HEML eq. (32), second line
     });

@@ -124,6 +124,7 @@ struct TLEDForceField::Impl {
     viscoelastic::HistoryClock clock;
     double dt = 0;            ///< the scene's time step (s), from dtChanged (0: none yet)
     std::vector<double> u;    ///< displacements of the last addForce, 4 per internal node
+    const core::BaseMechanicalState* evalState = nullptr;  ///< the state of the evaluation under way (beginForces)
     size_t batches = 0;       ///< element batches of all blocks (the viscous states hold one slot per batch)
     bool streamStates = false; ///< viscous states too large for the caches: streaming stores
 

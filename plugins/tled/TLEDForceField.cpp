@@ -148,23 +148,28 @@ void runBlock(const Impl& im, const Block& b, const KernelIO& io) {
     im.groups[static_cast<size_t>(b.group)].fn(im, b, io);
 }
 
-/// u = x - X for the nodes the elements use, 4 per node in internal order (the 4th is padding). An
-/// orphaned "omp for": shared by the threads of the enclosing parallel region (every caller opens its
-/// own, so a caller inside a user's parallel region still gets all of u).
-void displacements(const Impl& im, const core::BaseMechanicalState& state, std::vector<double>& u) {
+/// u = x - X for the internal nodes [lo, hi) the elements use, 4 per node in internal order (the 4th is padding).
+void displacementRange(const Impl& im, const core::BaseMechanicalState& state, double* __restrict up, long lo, long hi) {
     const double* __restrict x = core::flat(state.x());
     const double* __restrict X = core::flat(state.x0());
     const int* __restrict node = im.nodeOf.empty() ? nullptr : im.nodeOf.data();
-    const long n = static_cast<long>(im.nodeCount);
-    double* __restrict up = u.data();
-#pragma omp for schedule(static)
-    for (long i = 0; i < n; ++i) {
+    for (long i = lo; i < hi; ++i) {
         const size_t p = 3 * static_cast<size_t>(node ? node[i] : i);
         up[4 * i] = x[p] - X[p];
         up[4 * i + 1] = x[p + 1] - X[p + 1];
         up[4 * i + 2] = x[p + 2] - X[p + 2];
         up[4 * i + 3] = 0.0;
     }
+}
+
+/// displacementRange over every node. An orphaned "omp for": shared by the threads of the enclosing
+/// parallel region (every caller opens its own, so a caller inside a user's parallel region still gets all of u).
+void displacements(const Impl& im, const core::BaseMechanicalState& state, std::vector<double>& u) {
+    const long n = static_cast<long>(im.nodeCount);
+    const long chunks = (n + core::kNodeChunk - 1) / core::kNodeChunk;
+#pragma omp for schedule(static)
+    for (long c = 0; c < chunks; ++c)
+        displacementRange(im, state, u.data(), c * core::kNodeChunk, std::min(n, (c + 1) * core::kNodeChunk));
 }
 
 /// Runs every block on the state's current displacements; setup(io, block index) chooses the outputs
@@ -208,8 +213,17 @@ struct OutputHistory {
 } // namespace
 
 void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
+    if (f.size() < m_impl->nodeCount)
+        elements::runtimeError(*this, "its elements use " + std::to_string(m_impl->nodeCount) + " nodes but the force array has " +
+                                          std::to_string(f.size()));
+    beginForces(state, t);
+    // one parallel region: displacements, the blocks, then the sum of the block buffers
+    core::runThreadedForces(*this, core::flat(f), static_cast<long>(std::min(f.size(), state.size())));
+}
+
+void TLEDForceField::beginForces(core::BaseMechanicalState& state, double t) {
     Impl& im = *m_impl;
-    if (state.size() < im.nodeCount || f.size() < im.nodeCount)
+    if (state.size() < im.nodeCount)
         elements::runtimeError(*this, "its elements use " + std::to_string(im.nodeCount) + " nodes but the state '" +
                                           state.name() + "' has " + std::to_string(state.size()));
     // viscous history: a new time advances it, over the time elapsed since the last evaluation (the
@@ -221,30 +235,36 @@ void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, do
         for (auto& vs : im.visco) viscoelastic::stepCoefficients(*vs.prony, im.clock.elapsed(), im.dt, vs.A, vs.B);
     }
     im.u.resize(4 * im.nodeCount);
-    const double* u = im.u.data();
-    const long nb = static_cast<long>(im.blocks.size());
-    // one parallel region: displacements, the blocks, then the sum of the block buffers
-#pragma omp parallel if (nb > 1)
-    {
-        displacements(im, state, im.u);
-#pragma omp for schedule(dynamic, 1)
-        for (long bi = 0; bi < nb; ++bi) {
-            const Block& b = im.blocks[static_cast<size_t>(bi)];
-            KernelIO io;
-            io.u = u;
-            io.buf = im.buffers.buffer(static_cast<size_t>(bi));  // zero: sumInto cleared it
-            io.bufLo = im.buffers.lo(static_cast<size_t>(bi));
-            for (size_t v = 0; v < im.visco.size(); ++v) {
-                io.Yhist[v] = im.visco[v].Yprev.data();
-                io.Ynew[v] = im.visco[v].Ycur.data();
-            }
-            io.streamY = im.streamStates;
-            runBlock(im, b, io);
-            if (io.streamY) simd::streamFence();
-        }
-        // per node, in block order (bitwise the same for any thread count); clears the buffers
-        im.buffers.sumInto(core::flat(f));
+    im.evalState = &state;
+}
+
+long TLEDForceField::prepareNodes() const { return static_cast<long>(m_impl->nodeCount); }
+
+void TLEDForceField::prepareRange(long lo, long hi) {
+    displacementRange(*m_impl, *m_impl->evalState, m_impl->u.data(), lo, hi);
+}
+
+long TLEDForceField::forceBlocks() const { return static_cast<long>(m_impl->blocks.size()); }
+
+void TLEDForceField::runForceBlock(long bi) {
+    Impl& im = *m_impl;
+    const Block& b = im.blocks[static_cast<size_t>(bi)];
+    KernelIO io;
+    io.u = im.u.data();
+    io.buf = im.buffers.buffer(static_cast<size_t>(bi));  // zero: the sum cleared it
+    io.bufLo = im.buffers.lo(static_cast<size_t>(bi));
+    for (size_t v = 0; v < im.visco.size(); ++v) {
+        io.Yhist[v] = im.visco[v].Yprev.data();
+        io.Ynew[v] = im.visco[v].Ycur.data();
     }
+    io.streamY = im.streamStates;
+    runBlock(im, b, io);
+    if (io.streamY) simd::streamFence();
+}
+
+void TLEDForceField::sumForceRange(double* f, long lo, long hi) {
+    // per node, in block order (bitwise the same for any thread count); clears the buffers
+    m_impl->buffers.sumRange(f, lo, hi);
 }
 
 bool TLEDForceField::worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const {

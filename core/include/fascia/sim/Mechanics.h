@@ -246,6 +246,30 @@ protected:
     Triangles m_triangles;
 };
 
+/// The team of the threaded step (ThreadedStep.h), chosen from the measured steps: all the OpenMP
+/// threads, or one thread when the steps measured on one are faster (another process holds a core:
+/// every barrier of a team then waits for a descheduled thread, docs/performance.md, issue 17). The
+/// results are bitwise the same either way (principle 5), so switching costs nothing but the probes:
+/// every `interval` steps it runs kProbe steps on the other team, and switches when the mean of
+/// those steps is 10 % below the mean of the current team's recent steps; the interval doubles (up to 1,024 steps) while the choice stands.
+struct TeamChoice {
+    static constexpr int kKeep = 8, kProbe = 3;
+    double seconds[2][kKeep] = {};  ///< recent step times (s) per team: [0] one thread, [1] all
+    int count[2] = {0, 0};          ///< samples recorded per team (the ring holds the last kKeep)
+    int current = 1;                ///< the team of ordinary steps
+    long step = 0, nextProbe = 16, interval = 16;
+    int probing = 0;                ///< probe steps left
+    /// The team of the next step: 0 one thread, 1 all.
+    int choose();
+    /// The time of a step just run on team `team` (as choose() gave it).
+    void record(int team, double s);
+    double mean(int team) const;
+};
+/// Whether the threaded step picks its team from measured steps (TeamChoice; default true,
+/// FASCIA_ADAPTIVE_TEAM=0 in the environment turns it off): off, it always runs on all threads.
+void setAdaptiveTeam(bool on);
+bool adaptiveTeamEnabled();
+
 /// One state with everything acting on it, as assembled by the simulation for its integrator.
 struct MechanicalGroup {
     BaseIntegrator* integrator = nullptr;
@@ -294,6 +318,26 @@ struct MechanicalGroup {
     /// null. The integrator still gives the group's stable time step and its parameters. (Last, so
     /// that the members plugins built before it read keep their offsets.)
     BaseStepBackend* backend = nullptr;
+
+    // The pieces of computeForces and checkStep that the threaded step (ThreadedStep.h) runs by chunks.
+    /// What f starts from at time t: the external forces and c(t) g where present.
+    struct ForceStart {
+        bool ext = false, gravity = false;
+        double g[3] = {0, 0, 0};
+    };
+    ForceStart forceStart(double t) const;
+    /// f = external forces + m c(t) g at the nodes [lo, hi).
+    void initialForces(const ForceStart& s, long lo, long hi);
+    /// The constrained nodes of this step (reactionNodes, from every constraint's list), their old reactions zeroed.
+    void prepareReactions();
+    /// Every constraint's projectForces, and the reactions at reactionNodes (what it removed).
+    void applyConstraints();
+    /// checkStep's sums over chunk c (nodes [lo, hi)): the finite probe of x and v and the kinetic energy.
+    void checkChunk(long c, long lo, long hi);
+    /// Per chunk of kNodeChunk nodes: 1 where the threaded step already computed checkStep's sums
+    /// (chunkSums); empty otherwise. checkStep computes the others and empties it.
+    std::vector<char> chunkReady;
+    TeamChoice team;  ///< the threaded step's team
 };
 
 /// Runs whole steps of mechanical groups elsewhere than in the integrators' host loops (the cuda

@@ -57,12 +57,20 @@ public:
     /// and writes every row, the sum reads and clears it (4 passes); f is read and written, nodeOf
     /// read. No element data (the force field adds its own).
     core::LayoutBytes stepBytes() const;
+    /// The same for the state nodes [lo, hi) only (any thread, disjoint ranges: the threaded step's
+    /// sum, fascia/sim/ThreadedStep.h). Without renumbering a tile of the buffers' rows; renumbered, each
+    /// state node's rows through a per-node list in block order. Either way each node's rows are
+    /// added in block order from 0 and the total added to f, as sumInto does: the same bits.
+    void sumRange(double* f, long lo, long hi);
 
 private:
     std::vector<int> m_lo, m_hi;
     std::vector<size_t> m_offset;
     std::vector<double> m_buf;
     std::vector<int> m_nodeOf;
+    std::vector<int> m_internalOf;       ///< renumbered: state node -> internal node (-1: none)
+    std::vector<size_t> m_nodeRowStart;  ///< renumbered: the rows of internal node p in block order are
+    std::vector<size_t> m_nodeRows;      ///< m_nodeRows[m_nodeRowStart[p] .. [p + 1]] (offsets in doubles)
     size_t m_nodes = 0, m_size = 0;
 };
 
@@ -132,12 +140,19 @@ public:
     /// kernel reads the row positions and reads and writes the force rows, the sum reads the lists
     /// and the rows and reads and writes f. No element data (the force field adds its own).
     core::LayoutBytes stepBytes() const;
+    /// positionsIn's copy for the internal nodes [lo, hi) only (nothing when directGather()), and
+    /// sumInto for the state nodes [lo, hi) only: any thread, disjoint ranges (the threaded step,
+    /// fascia/sim/ThreadedStep.h). The same bits as positionsIn and sumInto.
+    void positionsRange(const double* x, long lo, long hi);
+    const double* positionsBase(const double* x) const { return m_directGather ? x : m_xin.data(); }
+    void sumRange(double* f, long lo, long hi) const;
 
 private:
     std::vector<size_t> m_rowStart{0};  ///< rows of block b: [m_rowStart[b], m_rowStart[b + 1])
     std::vector<int> m_rowInternal;     ///< internal node of each row
     std::vector<int> m_rowNode;         ///< state node of each row
     std::vector<int> m_nodeOf;          ///< internal node -> state node
+    std::vector<int> m_internalOf;      ///< state node -> internal node (-1: none)
     std::vector<int> m_nodeRowStart;    ///< per internal node p: its rows are m_nodeRows[start[p] .. [p + 1])
     std::vector<int> m_nodeRows;        ///< rows of each node, in block order
     bool m_directGather = false;

@@ -46,6 +46,7 @@
 #include "fascia/materials/Material.h"
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/ThreadedStep.h"
 
 #include <memory>
 #include <string>
@@ -59,7 +60,7 @@ namespace fascia::heml {
 
 struct HEMLData;
 
-class HEMLForceField : public core::BaseForceField, public core::LayoutReport {
+class HEMLForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces {
 public:
     HEMLForceField();
     ~HEMLForceField() override;
@@ -68,6 +69,14 @@ public:
     std::vector<core::Component*> dependencies() const override;
 
     void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
+    /// addForce in stages for the group's threaded step (fascia/sim/ThreadedStep.h): the history and checks,
+    /// the positions in internal order (large meshes), the blocks, the ordered sum of the node rows.
+    void beginForces(core::BaseMechanicalState& state, double t) override;
+    long prepareNodes() const override;
+    void prepareRange(long lo, long hi) override;
+    long forceBlocks() const override;
+    void runForceBlock(long b) override;
+    void sumForceRange(double* f, long lo, long hi) override;
     /// Elastic energy sum_e Vol_e W_e (J) at the state's positions (viscous history not included).
     double potentialEnergy(const core::BaseMechanicalState& state) const override;
     /// min over elements of h_e / c_e: h_e the shortest altitude 3 Vol / (largest face area) of the
@@ -133,6 +142,7 @@ private:
     std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
     std::unique_ptr<HEMLData> m_data;
+    const double* m_evalX = nullptr;  // the positions of the evaluation under way (3 per state node)
 };
 
 } // namespace fascia::heml

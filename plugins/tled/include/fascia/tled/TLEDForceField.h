@@ -65,6 +65,7 @@
 #include "fascia/materials/Material.h"
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/ThreadedStep.h"
 
 #include <array>
 #include <memory>
@@ -77,7 +78,7 @@ class ViscoelasticProny;
 
 namespace fascia::tled {
 
-class TLEDForceField : public core::BaseForceField, public core::LayoutReport {
+class TLEDForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces {
 public:
     TLEDForceField();
     ~TLEDForceField() override;
@@ -87,6 +88,14 @@ public:
     std::vector<core::Component*> dependencies() const override;
 
     void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
+    /// addForce in stages for the group's threaded step (fascia/sim/ThreadedStep.h): the history and checks,
+    /// u = x - X per internal node, the blocks, the ordered sum of the block buffers.
+    void beginForces(core::BaseMechanicalState& state, double t) override;
+    long prepareNodes() const override;
+    void prepareRange(long lo, long hi) override;
+    long forceBlocks() const override;
+    void runForceBlock(long b) override;
+    void sumForceRange(double* f, long lo, long hi) override;
     /// Elastic strain energy (J) at the current positions, hourglass energy included.
     double potentialEnergy(const core::BaseMechanicalState& state) const override;
     /// min over elements of L_e / c (TLED section 7): L_e the smallest altitude 3V/A_max of a

@@ -1,0 +1,157 @@
+// The threaded step (fascia/sim/ThreadedStep.h: one parallel region per step, blocks and node chunks handed
+// out from shared counters) gives bitwise the positions, velocities, forces and reactions of the
+// sequential path (computeForces, then the integrator's update), for 1, 2 and 3 threads, HEML and TLED
+// tetrahedra and TLED hexahedra, elastic and with a Prony series, with every integrator, with gravity,
+// fixed nodes and a force field that is not threaded (ConstantForce) in the same group; and it still
+// does when one thread is held up in its blocks (a test hook that sleeps).
+#include "fascia/sim/Simulation.h"
+#include "fascia/sim/ThreadedStep.h"
+
+#include <catch2/catch.hpp>
+
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <algorithm>
+#include <cmath>
+
+using fascia::core::Simulation;
+
+namespace {
+
+struct Case {
+    std::string ff, element, integrator;
+    bool prony = false;
+};
+
+std::string scene(const Case& c) {
+    const std::string integ = c.integrator == "ExplicitEuler"        ? "<ExplicitEuler damping=\"200\"/>"
+                              : c.integrator == "DynamicRelaxation" ? "<DynamicRelaxation maxIterations=\"30\" tolerance=\"0.2\" displacementTolerance=\"0.2\"/>"
+                              : c.integrator == "SemiImplicitEuler" ? "<SemiImplicitEuler damping=\"5\"/>"
+                                                                    : "<" + c.integrator + "/>";
+    // 12 x 12 x 20 cells: 3,549 nodes (4 node chunks, above the threshold of the parallel node loops),
+    // 17,280 tetrahedra or 2,880 hexahedra: several blocks for every force field
+    return "<Node name=\"root\" dt=\"auto\" dtSafety=\"0.5\" gravity=\"0 0 -9.81\">\n"
+           "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.06 0.06 0.1\" resolution=\"12 12 20\" element=\"" +
+           c.element + "\"/>\n"
+           "  <MechanicalObject name=\"state\"/>\n  <LumpedMass density=\"1000\"/>\n"
+           "  <CompressibleNeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n" +
+           (c.prony ? "  <ViscoelasticProny alpha=\"0.5\" tau=\"0.002\" apply=\"isochoric\"/>\n" : "") +
+           "  <ConstantForce group=\"zmax\" totalForce=\"0.3 -0.2 -0.5\"/>\n"
+           "  <" + c.ff + " name=\"ff\"/>\n  " + integ + "\n"
+           "  <FixedConstraint group=\"zmin\"/>\n</Node>\n";
+}
+
+struct Result {
+    fascia::Positions x, v, f, r, x0;
+};
+
+Result run(const Case& c, int threads, bool threaded, int steps) {
+    omp_set_num_threads(threads);
+    fascia::core::setThreadedStep(threaded);
+    fascia::core::setAdaptiveTeam(false);  // every step on all the threads asked for
+    auto sim = Simulation::fromString(scene(c), "threaded.xml");
+    sim->run(steps);
+    auto& s = sim->state("state");
+    Result out{s.x(), s.v(), s.f(), s.reaction(), s.x0()};
+    fascia::core::setThreadedStep(true);
+    fascia::core::setAdaptiveTeam(true);
+    return out;
+}
+
+bool same(const fascia::Positions& a, const fascia::Positions& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(fascia::Vec3)) == 0;
+}
+
+void requireSame(const Result& a, const Result& b) {
+    CHECK(same(a.x, b.x));
+    CHECK(same(a.v, b.v));
+    CHECK(same(a.f, b.f));
+    CHECK(same(a.r, b.r));
+}
+
+std::atomic<int> g_heldUp{0};
+
+/// Thread 1 sleeps in every fifth block it takes: the other threads take the rest meanwhile.
+void holdUpThreadOne(int thread, long task) {
+    if (thread == 1 && task % 5 == 1) {
+        ++g_heldUp;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+}
+
+} // namespace
+
+TEST_CASE("the threaded step is bitwise the sequential path with 1, 2 and 3 threads", "[threaded][determinism]") {
+    const int saved = omp_get_max_threads();
+    const std::string integrator = GENERATE("SemiImplicitEuler", "ExplicitEuler", "CentralDifference", "DynamicRelaxation");
+    const std::string kind = GENERATE("HEMLForceField tetrahedra6", "TLEDForceField tetrahedra6", "TLEDForceField hexahedra");
+    const bool prony = GENERATE(false, true);
+    const size_t space = kind.find(' ');
+    const Case c{kind.substr(0, space), kind.substr(space + 1), integrator, prony};
+    CAPTURE(c.ff, c.element, c.integrator, c.prony);
+    const int steps = integrator == "DynamicRelaxation" ? 2 : 6;
+    const Result reference = run(c, 1, false, steps);
+    REQUIRE(reference.f.size() > 3000);
+    double moved = 0;
+    for (size_t i = 0; i < reference.x.size(); ++i) moved = std::max(moved, (reference.x[i] - reference.x0[i]).norm());
+    REQUIRE(moved > 0);
+    for (int threads : {1, 2, 3}) {
+        CAPTURE(threads);
+        requireSame(reference, run(c, threads, true, steps));
+    }
+    requireSame(reference, run(c, 3, false, steps));
+    omp_set_num_threads(saved);
+}
+
+TEST_CASE("the threaded step gives the same bits when one thread is held up in its blocks", "[threaded][determinism]") {
+    const int saved = omp_get_max_threads();
+    const std::string kind = GENERATE("HEMLForceField tetrahedra6", "TLEDForceField tetrahedra6");
+    const size_t space = kind.find(' ');
+    const Case c{kind.substr(0, space), kind.substr(space + 1), "SemiImplicitEuler", true};
+    CAPTURE(c.ff);
+    const Result reference = run(c, 1, false, 8);
+    fascia::core::setTaskHook(holdUpThreadOne);
+    const Result two = run(c, 2, true, 8), three = run(c, 3, true, 8);
+    fascia::core::setOwnedRanges(false);  // one shared counter instead of owned ranges and stealing
+    const Result shared = run(c, 2, true, 8);
+    fascia::core::setOwnedRanges(true);
+    fascia::core::setTaskHook(nullptr);
+    CHECK(g_heldUp > 0);
+    requireSame(reference, two);
+    requireSame(reference, three);
+    requireSame(reference, shared);
+    omp_set_num_threads(saved);
+}
+
+TEST_CASE("the threaded step's team falls back to one thread when its steps are faster, and back", "[threaded]") {
+    fascia::core::TeamChoice t;
+    // all threads take 1 ms a step, one thread 0.6 ms (a loaded core): the first probe switches
+    long steps = 0;
+    while (t.current == 1 && steps < 100) {
+        const int team = t.choose();
+        t.record(team, team == 1 ? 1e-3 : 0.6e-3);
+        ++steps;
+    }
+    CHECK(t.current == 0);
+    CHECK(steps == 15 + fascia::core::TeamChoice::kProbe);
+    // the load goes: all threads now take 0.4 ms, and a later probe switches back
+    steps = 0;
+    while (t.current == 0 && steps < 200) {
+        const int team = t.choose();
+        t.record(team, team == 1 ? 0.4e-3 : 0.6e-3);
+        ++steps;
+    }
+    CHECK(t.current == 1);
+    // while the choice stands, the probes get rarer (the interval doubles up to 1,024 steps)
+    for (int k = 0; k < 5000; ++k) {
+        const int team = t.choose();
+        t.record(team, team == 1 ? 0.4e-3 : 0.6e-3);
+    }
+    CHECK(t.current == 1);
+    CHECK(t.interval == 1024);
+}
