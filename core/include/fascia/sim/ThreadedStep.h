@@ -196,8 +196,12 @@ bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     for (ThreadedForces* ff : ffs) ff->beginForces(s, t);
     const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
     g.prepareReactions();
-    // chunks holding a constrained node are updated after the constraints (phase 3b)
-    g.chunkReady.assign(size_t(chunks), 1);
+    // chunks holding a constrained node are updated after the constraints (phase 3b); a constraint
+    // that lists no nodes (a rigid tool: the nodes it touches depend on the state) may touch any
+    // chunk, so then every chunk waits for the constraints
+    bool anyNode = false;
+    for (const BaseConstraint* c : g.constraints) anyNode = anyNode || c->constrainedNodes().empty();
+    g.chunkReady.assign(size_t(chunks), anyNode ? 0 : 1);
     for (int i : g.reactionNodes)
         if (i >= 0 && i < n) g.chunkReady[size_t(i / kNodeChunk)] = 0;
     g.chunkSums.assign(2 * size_t(chunks), 0.0);
