@@ -79,7 +79,10 @@ void DistanceGrid::cellLists() {
             for (int t : near) {
                 Vec3 point;
                 TriangleFeature f;
-                list.push_back({std::sqrt(m_tree.distance2(c, t, point, f)), t});
+                const double d = std::sqrt(m_tree.distance2(c, t, point, f));
+                float key = float(d);
+                if (double(key) > d) key = std::nextafter(key, -std::numeric_limits<float>::infinity());
+                list.push_back({key, t});
             }
             std::sort(list.begin() + long(first), list.end(), [](const Entry& a, const Entry& b) {
                 return a.centre != b.centre ? a.centre < b.centre : a.triangle < b.triangle;
@@ -150,7 +153,7 @@ SurfacePoint DistanceGrid::nearestListed(const Vec3& p, size_t cell) const {
     TriangleFeature bestF = TriangleFeature::Face;
     for (uint32_t e = m_offset[cell]; e < m_offset[cell + 1]; ++e) {
         const Entry& en = m_list[e];
-        if (en.centre - pc > best) break;  // |p - T| >= |c - T| - |p - c|: this and every later one farther
+        if (double(en.centre) - pc > best) break;  // |p - T| >= |c - T| - |p - c|: this and every later one farther
         Vec3 q;
         TriangleFeature f;
         const double d2 = m_tree.distance2(p, en.triangle, q, f);

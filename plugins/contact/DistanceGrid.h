@@ -53,7 +53,7 @@ public:
 private:
     /// A triangle of a cell's list and its distance from the cell's centre.
     struct Entry {
-        double centre;
+        float centre;  ///< rounded down: a lower bound of the distance
         int triangle;
     };
     /// The lists (docs/design.md, section 4.5). The query refines only where the interpolated value
