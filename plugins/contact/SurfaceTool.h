@@ -3,6 +3,7 @@
 #include "RigidTool.h"
 
 #include <memory>
+#include <vector>
 
 namespace fascia::contact {
 
@@ -31,6 +32,18 @@ public:
     core::Param<int> m_resolution{this, core::ParamSpec("resolution").min(2).help("cells of the signed distance grid along the longest side of the surface's box (the grid takes 4 bytes a node, at most 256 MiB)"), 64};
 
 private:
+    /// The last answers, by their query point (bitwise): a step queries a node's position up to three
+    /// times (projectPositions, projectVelocities, the next projectForces). The query being a function
+    /// of the point alone, a hit gives bitwise the answer it would compute. Not for concurrent calls
+    /// (RigidTool's loops are serial).
+    struct Cached {
+        Vec3 point, normal;
+        double distance;
+        bool valid;
+    };
+    static constexpr size_t kCacheSlots = 4096;
+    mutable std::vector<Cached> m_cache;
+
     std::unique_ptr<TriangleTree> m_tree;
     std::unique_ptr<DistanceGrid> m_grid;
     double m_size = 0;

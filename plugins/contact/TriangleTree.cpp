@@ -178,11 +178,11 @@ SurfacePoint TriangleTree::nearest(const Vec3& p, double bound, bool& found, int
         if (b.count > 0) {
             for (int k = b.first; k < b.first + b.count; ++k) {
                 const int t = m_order[size_t(k)];
-                const auto& v = m_tris[size_t(t)];
                 TriangleFeature f;
-                const Vec3 q = closestOnTriangle(p, m_p[size_t(v[0])], m_p[size_t(v[1])], m_p[size_t(v[2])], f);
-                const double d2 = (p - q).squaredNorm();
-                if (d2 < best2 || (!found && d2 <= best2)) {
+                Vec3 q;
+                const double d2 = distance2(p, t, q, f);
+                // ties to the lowest index: the same answer for any search order (DistanceGrid's cell lists)
+                if (d2 < best2 || (!found && d2 <= best2) || (d2 == best2 && t < out.triangle)) {
                     best2 = d2;
                     out.point = q;
                     out.triangle = t;
@@ -199,11 +199,24 @@ SurfacePoint TriangleTree::nearest(const Vec3& p, double bound, bool& found, int
         stack[top++] = leftFirst ? b.left : b.right;
     }
     if (!found) return out;
+    return result(p, out.triangle, out.point, bestFeature, best2);
+}
+
+double TriangleTree::distance2(const Vec3& p, int t, Vec3& q, TriangleFeature& feature) const {
+    const auto& v = m_tris[size_t(t)];
+    q = closestOnTriangle(p, m_p[size_t(v[0])], m_p[size_t(v[1])], m_p[size_t(v[2])], feature);
+    return (p - q).squaredNorm();
+}
+
+SurfacePoint TriangleTree::result(const Vec3& p, int t, const Vec3& q, TriangleFeature feature, double d2) const {
+    SurfacePoint out;
+    out.point = q;
+    out.triangle = t;
     // the sign from the feature's pseudonormal; on a face the face's normal (p - q is along it)
-    const Vec3 pn = pseudonormal(out.triangle, bestFeature);
-    const Vec3 d = p - out.point;
-    const double len = std::sqrt(best2);
-    if (bestFeature == TriangleFeature::Face) {
+    const Vec3 pn = pseudonormal(t, feature);
+    const Vec3 d = p - q;
+    const double len = std::sqrt(d2);
+    if (feature == TriangleFeature::Face) {
         out.distance = d.dot(pn);
         out.normal = pn;
     } else {
@@ -215,6 +228,31 @@ SurfacePoint TriangleTree::nearest(const Vec3& p, double bound, bool& found, int
         out.normal = len > 1e-12 * scale ? Vec3(d / out.distance) : pn;
     }
     return out;
+}
+
+void TriangleTree::within(const Vec3& p, double radius, std::vector<int>& out) const {
+    out.clear();
+    if (m_boxes.empty() || !(radius >= 0)) return;
+    const double r2 = radius * radius;
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Box& b = m_boxes[size_t(stack[--top])];
+        if (boxDistance2(p, b.lo, b.hi) > r2) continue;
+        if (b.count == 0) {
+            stack[top++] = b.left;
+            stack[top++] = b.right;
+            continue;
+        }
+        for (int k = b.first; k < b.first + b.count; ++k) {
+            const int t = m_order[size_t(k)];
+            TriangleFeature f;
+            Vec3 q;
+            if (distance2(p, t, q, f) <= r2) out.push_back(t);
+        }
+    }
+    std::sort(out.begin(), out.end());
 }
 
 size_t TriangleTree::bytes() const {

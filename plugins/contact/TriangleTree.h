@@ -39,7 +39,16 @@ public:
     /// distance known to be at least the answer's, or infinity); `found` is false when none is.
     /// `seed`, when given, is a triangle tried first (a neighbour's nearest: its distance bounds
     /// the search at once).
+    /// Of triangles at the same distance, the one of the lowest index (whatever the search order).
     SurfacePoint nearest(const Vec3& p, double bound, bool& found, int seed = -1) const;
+
+    /// The triangles whose distance to p is at most `radius`, in increasing index order.
+    void within(const Vec3& p, double radius, std::vector<int>& out) const;
+    /// The squared distance from p to triangle t, its closest point q and feature.
+    double distance2(const Vec3& p, int t, Vec3& q, TriangleFeature& feature) const;
+    /// The answer of nearest() once its closest triangle t (point q, feature, squared distance d2) is
+    /// known: the sign and the normal.
+    SurfacePoint result(const Vec3& p, int t, const Vec3& q, TriangleFeature feature, double d2) const;
 
     const Vec3& lo() const { return m_lo; }
     const Vec3& hi() const { return m_hi; }

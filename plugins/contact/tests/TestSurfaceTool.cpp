@@ -6,6 +6,7 @@
 #include "DistanceGrid.h"
 #include "SurfaceMeshes.h"
 #include "SurfaceTool.h"
+#include "fascia/surface/TriangleSurface.h"
 
 #include <omp.h>
 
@@ -260,4 +261,51 @@ TEST_CASE("A surface tool's grid and contact forces are bitwise the same with 1 
     CHECK(one.cb == two.cb);
     CHECK(one.cp == two.cp);
     CHECK(one.x == two.x);
+}
+
+namespace {
+/// The grid's query (the cell lists) against the same query through the whole tree, at `count`
+/// points near the surface of m (a random surface point moved by up to 2.5 cells along a random
+/// direction) and spread over the grid: bitwise the same distance and normal.
+void checkListsAgainstTree(const Mesh& m, int resolution, int count) {
+    const TriangleTree tree(m.points, m.triangles);
+    const DistanceGrid grid(tree, resolution);
+    const double h = grid.cell();
+    const auto n = grid.counts();
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    const Vec3 lo = grid.origin(), span = h * Vec3(double(n[0] - 1), double(n[1] - 1), double(n[2] - 1));
+    int band = 0;
+    for (int q = 0; q < count; ++q) {
+        Vec3 p = lo + span.cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+        if (q % 4) {
+            const auto& t = m.triangles[size_t(rng() % m.triangles.size())];
+            const double a = u(rng), b = u(rng) * (1 - a);
+            const Vec3 s = m.points[size_t(t[0])] + a * (m.points[size_t(t[1])] - m.points[size_t(t[0])]) +
+                           b * (m.points[size_t(t[2])] - m.points[size_t(t[0])]);
+            // on the surface exactly, or off it by up to 2.5 cells
+            const double off = q % 8 == 1 ? 0.0 : 5 * (u(rng) - 0.5) * h;
+            p = s + off * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+        }
+        Vec3 nl, nt;
+        const double dl = grid.query(p, nl), dt = grid.queryTree(p, nt);
+        CAPTURE(q, p.transpose(), dl, dt, h);
+        REQUIRE(dl == dt);
+        REQUIRE(nl == nt);
+        if (std::abs(dl) < 2 * h) ++band;
+    }
+    CHECK(band > count / 2);
+    CHECK(grid.listEntries() > 0);
+}
+} // namespace
+
+TEST_CASE("The distance grid's cell lists give bitwise the tree's closest point", "[SurfaceTool][DistanceGrid]") {
+    // coplanar triangles of a notched voxel cube (ties on their shared edges), a tessellated sphere
+    // and the probe
+    Voxels notched = Voxels::box(Vec3(0, 0, 0), Vec3(0.02, 0.02, 0.02), 2, 2, 2);
+    notched.full[7] = 0;
+    checkListsAgainstTree(notched.surface(), 24, 20000);
+    checkListsAgainstTree(icosphere(4, 0.02, Vec3(0.001, 0.002, 0.003)), 40, 20000);
+    const fascia::surface::TriangleSurface probe = fascia::surface::readSurface(std::string(FASCIA_SOURCE_DIR) + "/scenes/meshes/probe.obj");
+    checkListsAgainstTree(Mesh{probe.points, probe.triangles}, 64, 20000);
 }
