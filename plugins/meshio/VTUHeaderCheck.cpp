@@ -200,7 +200,13 @@ private:
             tuples = (long long)m_cells;
         if (context == "Points") m_havePoints = true;
         if (context == "Cells" && name == "types") m_haveTypes = true;
-        const int tb = typeBytes(attribute(tag, "type"));
+        const std::string type = attribute(tag, "type");
+        const int tb = typeBytes(type);
+        // VTK 9.1 makes no array for a type it does not know, then reads into it (a null dereference
+        // in vtkXMLDataReader::ReadPieceData): refuse it here, with the types it knows
+        if (tb == 0 && type != "String" && type != "Bit")
+            failAt(at, "DataArray " + quoted(name) + " has the type " + quoted(type) +
+                           ": expected Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64, String or Bit");
         VtuArrayLayout where{at, format, bodyStart, false, tb};
         unsigned long long values = 0;
         bool known = true;
