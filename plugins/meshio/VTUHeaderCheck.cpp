@@ -42,9 +42,7 @@ public:
             const std::string_view tag = xml.substr(p + 1, e - p - 1);
             const std::string name(tag.substr(0, tag.find_first_of(" \t\r\n/>")));
             if (name == "VTKFile") {
-                m_header64 = attribute(tag, "header_type") == "UInt64";
-                m_compressed = !attribute(tag, "compressor").empty();
-                m_bigEndian = attribute(tag, "byte_order") == "BigEndian";
+                fileAttributes(tag, p);
             } else if (name == "Piece") {
                 pieceEnd();
                 m_pieceAt = p;
@@ -62,6 +60,24 @@ public:
     }
 
 private:
+    /// The VTKFile tag's header type, compressor and byte order. VTK 9.1 makes no compressor for a
+    /// class name it does not know and then decompresses with it (a null dereference in
+    /// vtkXMLDataReader::ReadPieceData), so only the names it knows pass; the others likewise.
+    void fileAttributes(std::string_view tag, size_t at) {
+        const std::string header = attribute(tag, "header_type"), compressor = attribute(tag, "compressor"),
+                          order = attribute(tag, "byte_order");
+        if (!header.empty() && header != "UInt32" && header != "UInt64")
+            failAt(at, "VTKFile has header_type " + quoted(header) + ": expected UInt32 or UInt64");
+        if (!compressor.empty() && compressor != "vtkZLibDataCompressor" && compressor != "vtkLZ4DataCompressor" &&
+            compressor != "vtkLZMADataCompressor")
+            failAt(at, "VTKFile has compressor " + quoted(compressor) +
+                           ": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or vtkLZMADataCompressor");
+        if (!order.empty() && order != "LittleEndian" && order != "BigEndian")
+            failAt(at, "VTKFile has byte_order " + quoted(order) + ": expected LittleEndian or BigEndian");
+        m_header64 = header == "UInt64";
+        m_compressed = !compressor.empty();
+        m_bigEndian = order == "BigEndian";
+    }
     [[noreturn]] void failAt(size_t at, const std::string& message) const {
         failAtByte(m_path, (long long)at, message);
     }
