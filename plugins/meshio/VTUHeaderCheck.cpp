@@ -223,6 +223,10 @@ private:
         if (tb == 0 && type != "String" && type != "Bit")
             failAt(at, "DataArray " + quoted(name) + " has the type " + quoted(type) +
                            ": expected Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64, String or Bit");
+        // without a format VTK 9.1 took an array for appended data and allocated what garbage in it
+        // announced (640 GB): a DataArray says how it is stored
+        if (format != "ascii" && format != "binary" && format != "appended")
+            failAt(at, "DataArray " + quoted(name) + " has the format " + quoted(format) + ": expected ascii, binary or appended");
         VtuArrayLayout where{at, format, bodyStart, false, tb};
         unsigned long long values = 0;
         bool known = true;
@@ -246,7 +250,7 @@ private:
             where.base64 = m_appendedBase64;
             values = announcedBytes(where.data, m_t.size(), m_appendedBase64, at) / unsigned(tb);
         } else {
-            known = false;  // a type or format VTK itself will judge
+            known = false;  // a String or Bit array: VTK itself judges its layout
         }
         if (!m_layout.pieces.empty() && known) {
             if (context == "Points") m_layout.pieces.back().points3 = where;
