@@ -122,7 +122,11 @@ private:
         if (u == std::string::npos) failAt(tagAt, "<AppendedData> has no '_' before its data");
         m_appended = u + 1;
         const size_t tagEnd = m_t.find('>', tagAt);
-        m_appendedBase64 = attribute(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "encoding") == "base64";
+        const std::string encoding = attribute(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "encoding");
+        // VTK 9.1 has no data stream for another encoding and reads through a null one
+        if (encoding != "raw" && encoding != "base64")
+            failAt(tagAt, "<AppendedData> has the encoding " + quoted(encoding) + ": expected raw or base64");
+        m_appendedBase64 = encoding == "base64";
     }
 
     /// Header words of the data at `at` (raw bytes, or base64 text when base64), n words of the
