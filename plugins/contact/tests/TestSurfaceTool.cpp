@@ -21,6 +21,13 @@ using fascia::contact::TriangleTree;
 
 namespace {
 
+/// The point of triangle t of m at barycentric weights a (along its first edge) and b (its second).
+template <class Mesh, class Triangle>
+Vec3 onTriangle(const Mesh& m, const Triangle& t, double a, double b) {
+    const Vec3& p0 = m.points[size_t(t[0])];
+    return p0 + a * (m.points[size_t(t[1])] - p0) + b * (m.points[size_t(t[2])] - p0);
+}
+
 std::string num(double v) {
     std::ostringstream s;
     s.precision(17);
@@ -53,8 +60,7 @@ void checkAgainstExact(const Voxels& shape, int resolution, int count) {
         if (q % 2) {  // half the points within half a cell of the surface: a random surface point, moved off along a random direction
             const auto& t = m.triangles[size_t(q / 2) % m.triangles.size()];
             const double a = u(rng), b = u(rng) * (1 - a);
-            const Vec3 s = m.points[size_t(t[0])] + a * (m.points[size_t(t[1])] - m.points[size_t(t[0])]) +
-                           b * (m.points[size_t(t[2])] - m.points[size_t(t[0])]);
+            const Vec3 s = onTriangle(m, t, a, b);
             p = s + (u(rng) - 0.5) * h * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
         }
         const double exact = shape.distance(p);
@@ -281,8 +287,7 @@ void checkListsAgainstTree(const Mesh& m, int resolution, int count) {
         if (q % 4) {
             const auto& t = m.triangles[size_t(rng() % m.triangles.size())];
             const double a = u(rng), b = u(rng) * (1 - a);
-            const Vec3 s = m.points[size_t(t[0])] + a * (m.points[size_t(t[1])] - m.points[size_t(t[0])]) +
-                           b * (m.points[size_t(t[2])] - m.points[size_t(t[0])]);
+            const Vec3 s = onTriangle(m, t, a, b);
             // on the surface exactly, or off it by up to 2.5 cells
             const double off = q % 8 == 1 ? 0.0 : 5 * (u(rng) - 0.5) * h;
             p = s + off * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
