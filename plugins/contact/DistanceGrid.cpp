@@ -2,6 +2,7 @@
 #include "fascia/sim/Mechanics.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,9 +17,11 @@ std::array<long long, 3> DistanceGrid::nodeCounts(const Vec3& lo, const Vec3& hi
     return n;
 }
 
-DistanceGrid::DistanceGrid(const TriangleTree& tree, int resolution) : m_tree(tree) {
+DistanceGrid::DistanceGrid(const TriangleTree& tree, int resolution, double maxBytes) : m_tree(tree) {
     const Vec3 lo = tree.lo(), hi = tree.hi();
     m_n = nodeCounts(lo, hi, resolution);
+    const double nodeBytes = bytesFor(m_n) + sizeof(uint32_t);  // and the offsets' last one
+    if (!(nodeBytes <= maxBytes)) throw TooLarge("DistanceGrid: the grid's nodes take more than the memory allowed");
     m_h = (hi - lo).maxCoeff() / double(resolution);
     // centred on the surface's box
     const Vec3 span(double(m_n[0] - 1) * m_h, double(m_n[1] - 1) * m_h, double(m_n[2] - 1) * m_h);
@@ -42,17 +45,23 @@ DistanceGrid::DistanceGrid(const TriangleTree& tree, int resolution) : m_tree(tr
             seed = s.triangle;
         }
     });
-    cellLists();
+    cellLists(std::floor((maxBytes - nodeBytes) / double(sizeof(Entry))));
 }
 
-void DistanceGrid::cellLists() {
+void DistanceGrid::cellLists(double maxEntries) {
     const long long n0 = m_n[0], n1 = m_n[1], n2 = m_n[2];
     const double band = kBand * m_h * (1 + 1e-6);  // the query's band, and a margin for its round-off
     const double r = 0.5 * std::sqrt(3.0) * m_h;   // the cells' half diagonal
     const long rows = long((n1 - 1) * (n2 - 1));
     std::vector<std::vector<Entry>> rowList(size_t(std::max(rows, 0L)));
     std::vector<std::vector<uint32_t>> rowCount(rowList.size());
+    // the entries listed so far, over all threads: past the limit every thread skips its remaining
+    // rows (whichever rows were listed, the total is then above the limit: the same answer, TooLarge)
+    const double limit = std::min(maxEntries, double(std::numeric_limits<uint32_t>::max()));
+    std::atomic<size_t> listed{0};
+    std::atomic<bool> over{false};
     core::forEachNode(rows, [&](long row) {
+        if (over.load(std::memory_order_relaxed)) return;
         const long long j = row % (n1 - 1), k = row / (n1 - 1);
         std::vector<int> near;
         rowCount[size_t(row)].assign(size_t(n0 - 1), 0);
@@ -89,7 +98,10 @@ void DistanceGrid::cellLists() {
             });
             rowCount[size_t(row)][size_t(i)] = uint32_t(list.size() - first);
         }
+        const size_t all = listed.fetch_add(rowList[size_t(row)].size()) + rowList[size_t(row)].size();
+        if (double(all) > limit) over = true;
     });
+    if (over) throw TooLarge("DistanceGrid: the cell lists take more than the memory allowed");
     // in node order (a cell by its lowest node): the same arrays for any thread count
     m_offset.assign(size_t(n0 * n1 * n2) + 1, 0);
     size_t total = 0;
@@ -98,7 +110,6 @@ void DistanceGrid::cellLists() {
         const long long i = node % n0, j = (node / n0) % n1, k = node / (n0 * n1);
         if (i + 1 < n0 && j + 1 < n1 && k + 1 < n2) total += rowCount[size_t(j + (n1 - 1) * k)][size_t(i)];
     }
-    if (total > std::numeric_limits<uint32_t>::max()) throw std::length_error("DistanceGrid: cell lists too long");
     m_offset.back() = uint32_t(total);
     m_list.reserve(total);
     for (long row = 0; row < rows; ++row) m_list.insert(m_list.end(), rowList[size_t(row)].begin(), rowList[size_t(row)].end());

@@ -7,6 +7,8 @@
 #include "TriangleTree.h"
 
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace fascia::contact {
@@ -18,13 +20,22 @@ public:
 
     /// The grid's node counts for `resolution` cells along the longest side of the box [lo, hi].
     static std::array<long long, 3> nodeCounts(const Vec3& lo, const Vec3& hi, int resolution);
-    /// Its memory: 4 bytes a node.
-    static double bytesFor(const std::array<long long, 3>& n) { return 4.0 * double(n[0]) * double(n[1]) * double(n[2]); }
+    /// The memory of its nodes, before any cell list: 8 bytes a node (a float sample and a 4-byte
+    /// offset into the lists). The lists add 8 bytes an entry.
+    static double bytesFor(const std::array<long long, 3>& n) { return 8.0 * double(n[0]) * double(n[1]) * double(n[2]); }
+
+    /// The grid would take more than the memory it was allowed (the nodes, or the nodes and the
+    /// lists), or more list entries than 32-bit offsets can address.
+    struct TooLarge : std::length_error {
+        using std::length_error::length_error;
+    };
 
     /// Samples the tree's signed distance at every node (rows of nodes on the OpenMP threads, each
     /// node on its own: the same grid for any thread count), then lists for every cell of the band the
-    /// triangles that can be the closest to a point of the cell (cellLists).
-    DistanceGrid(const TriangleTree& tree, int resolution);
+    /// triangles that can be the closest to a point of the cell (cellLists). Throws TooLarge, before
+    /// allocating them, when the nodes would take more than maxBytes, and when the nodes and the
+    /// lists would (counted as the lists are built, so that it stops early).
+    DistanceGrid(const TriangleTree& tree, int resolution, double maxBytes = std::numeric_limits<double>::infinity());
 
     /// Signed distance of p (negative inside) and the unit outward normal. Within kBand cells of the
     /// surface (by the interpolated value) the exact closest point: a point moved by -distance along
@@ -63,8 +74,9 @@ private:
     /// U = the largest distance of a corner to T0 (the distance to one triangle is convex), so the
     /// closest triangle of a point p of the cell is within U + r of c. Those are the cell's list,
     /// sorted by their distance from c: the query stops at the first whose distance from c, less
-    /// |p - c|, exceeds the best found (no later one can be nearer, or tie).
-    void cellLists();
+    /// |p - c|, exceeds the best found (no later one can be nearer, or tie). At most maxEntries
+    /// entries in all, else TooLarge (for any thread count).
+    void cellLists(double maxEntries);
     /// Point p of cell `cell` (its index): the exact closest point among the cell's list.
     SurfacePoint nearestListed(const Vec3& p, size_t cell) const;
     /// The interpolated value, its gradient and the cell of p (its lowest node's index).

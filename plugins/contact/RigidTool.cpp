@@ -4,6 +4,7 @@
 #include "fascia/scene/Node.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -69,6 +70,7 @@ void RigidTool::initContact() {
     m_slip.assign(n, 0);
     m_slipDir.assign(n, Vec3::Zero());
     m_anchor.assign(n, Vec3::Zero());
+    m_memo.assign(memoizeDistance() ? n : 0, DistanceMemo{Vec3::Zero(), Vec3::Zero(), 0.0, false});
     m_active.clear();
     m_poseTime = m_prevTime = node()->context().time;
     m_pose = m_prevPose = m_hasSet ? m_set : m_motion.at(m_poseTime);
@@ -123,9 +125,20 @@ void RigidTool::setPose(const core::Pose& pose) {
     if (!m_stepped) m_pose = m_prevPose = m_set;  // before any step: the pose from now on
 }
 
-double RigidTool::distanceWorld(const Vec3& x, Vec3& normalWorld) const {
+double RigidTool::distanceWorld(size_t i, const Vec3& x, Vec3& normalWorld) {
+    const Vec3 local = m_pose.orientation.conjugate() * (x - m_pose.position);
+    if (i < m_memo.size()) {
+        DistanceMemo& m = m_memo[i];
+        if (!(m.valid && std::memcmp(m.local.data(), local.data(), 3 * sizeof(double)) == 0)) {
+            m.local = local;
+            m.distance = signedDistance(local, m.normal);
+            m.valid = true;
+        }
+        normalWorld = m_pose.orientation * m.normal;
+        return m.distance;
+    }
     Vec3 nl;
-    const double d = signedDistance(m_pose.orientation.conjugate() * (x - m_pose.position), nl);
+    const double d = signedDistance(local, nl);
     normalWorld = m_pose.orientation * nl;
     return d;
 }
@@ -180,7 +193,7 @@ void RigidTool::projectForces(core::BaseMechanicalState& s) {
         const size_t i = size_t(k);
         m_slip[i] = 0;
         Vec3 n;
-        if (distanceWorld(x[i], n) > m_tolerance) continue;
+        if (distanceWorld(i, x[i], n) > m_tolerance) continue;
         const double fn = f[i].dot(n);
         if (!(fn < 0)) continue;  // pulled off the tool, or no force: no contact force
         const double N = -fn;
@@ -227,7 +240,7 @@ void RigidTool::projectPositions(core::BaseMechanicalState& s, double t) {
     for (int k : m_scratch) {
         const size_t i = size_t(k);
         Vec3 n;
-        const double d = distanceWorld(x[i], n);
+        const double d = distanceWorld(i, x[i], n);
         Vec3 dx = Vec3::Zero();
         if (m_slip[i] == 1) {
             // a sticking node stays on its point of the tool: it moves with the tool over the step
@@ -265,7 +278,7 @@ void RigidTool::projectVelocities(core::BaseMechanicalState& s, double t) {
     for (int k : m_scratch) {  // the candidates of projectPositions, at this pose
         const size_t i = size_t(k);
         Vec3 n;
-        if (distanceWorld(x[i], n) > m_tolerance) continue;
+        if (distanceWorld(i, x[i], n) > m_tolerance) continue;
         const Vec3 vrel = v[i] - toolVelocity(x[i]);
         const double vn = vrel.dot(n);
         if (vn < 0) v[i] -= vn * n;  // no approach into the tool

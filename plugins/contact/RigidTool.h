@@ -64,6 +64,10 @@ public:
     virtual bool localBounds(double margin, Vec3& lo, Vec3& hi) const = 0;
     /// The tool's size (m), for the contact tolerance.
     virtual double size() const = 0;
+    /// Whether signedDistance is dear enough to keep each node's last answer (a surface tool's is):
+    /// a step asks it for a node up to three times at the same tool-frame point (projectPositions,
+    /// projectVelocities, the next projectForces).
+    virtual bool memoizeDistance() const { return false; }
 
     core::Link<core::BaseMechanicalState> m_bodyLink{this, core::ParamSpec("body").help("the MechanicalObject of the body the tool touches (default: the one in its context)")};
     ToolMotion m_motion{this};
@@ -75,8 +79,10 @@ protected:
     void initContact();
 
 private:
-    /// World point -> tool frame at the current pose, and the world normal of the result.
-    double distanceWorld(const Vec3& x, Vec3& normalWorld) const;
+    /// Node i at world point x -> tool frame at the current pose, and the world normal of the
+    /// result. With memoizeDistance(), node i's last answer when its tool-frame point is bitwise the
+    /// same (signedDistance being a function of the point alone: bitwise its own answer).
+    double distanceWorld(size_t i, const Vec3& x, Vec3& normalWorld);
     /// The nodes to test this step: the surface nodes in the pose's broad-phase box, in order.
     void candidates(const core::BaseMechanicalState& s, std::vector<int>& out) const;
     /// The summed nodal masses of the body's group (null before the simulation assembled it).
@@ -99,6 +105,14 @@ private:
     Positions m_slipDir;                 ///< per node: the sliding direction (world, unit)
     Positions m_anchor;                  ///< per sticking node: its point in the tool's frame at the step's start
     std::vector<int> m_scratch;
+    /// Per body node (with memoizeDistance()): its last tool-frame query point and the answer. One
+    /// slot a node, so that a parallel loop over nodes could use it without locks.
+    struct DistanceMemo {
+        Vec3 local, normal;
+        double distance;
+        bool valid;
+    };
+    std::vector<DistanceMemo> m_memo;
 };
 
 } // namespace fascia::contact

@@ -1,8 +1,6 @@
 #include "SurfaceTool.h"
 #include "fascia/surface/TriangleSurface.h"
 
-#include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -45,31 +43,21 @@ void SurfaceTool::init() {
                                   {"read by " + className() + " '" + name() + "' at " + loc().str()});
     }
     m_tree = std::make_unique<TriangleTree>(std::move(s.points), std::move(s.triangles));
-    const auto n = DistanceGrid::nodeCounts(m_tree->lo(), m_tree->hi(), m_resolution.get());
-    if (DistanceGrid::bytesFor(n) > kMaxGridBytes)
-        fail(m_resolution, "resolution = " + std::to_string(m_resolution.get()) + " makes a signed distance grid of " +
-                               std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) + " nodes (" +
-                               mib(DistanceGrid::bytesFor(n)) + "), more than the limit of " + mib(kMaxGridBytes),
+    try {
+        m_grid = std::make_unique<DistanceGrid>(*m_tree, m_resolution.get(), kMaxGridBytes);
+    } catch (const DistanceGrid::TooLarge&) {
+        const auto n = DistanceGrid::nodeCounts(m_tree->lo(), m_tree->hi(), m_resolution.get());
+        fail(m_resolution, "resolution = " + std::to_string(m_resolution.get()) + ": the signed distance grid (" +
+                               std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) + " nodes, " +
+                               mib(DistanceGrid::bytesFor(n)) + ") and the triangle lists of its cells near the surface take more than the limit of " +
+                               mib(kMaxGridBytes),
              {"lower the resolution: the exact closest point near the surface does not depend on it"});
-    m_grid = std::make_unique<DistanceGrid>(*m_tree, m_resolution.get());
+    }
     m_size = (m_tree->hi() - m_tree->lo()).norm();
-    m_cache.assign(kCacheSlots, Cached{Vec3::Zero(), Vec3::Zero(), 0.0, false});
     initContact();
 }
 
-double SurfaceTool::signedDistance(const Vec3& local, Vec3& normal) const {
-    uint64_t bits[3];
-    std::memcpy(bits, local.data(), sizeof bits);
-    const uint64_t hash = (bits[0] * 0x9E3779B97F4A7C15ull) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full) ^ (bits[2] * 0x165667B19E3779F9ull);
-    Cached& slot = m_cache[size_t(hash >> 52) % kCacheSlots];
-    if (slot.valid && std::memcmp(slot.point.data(), bits, sizeof bits) == 0) {
-        normal = slot.normal;
-        return slot.distance;
-    }
-    const double d = m_grid->query(local, normal);
-    slot = {local, normal, d, true};
-    return d;
-}
+double SurfaceTool::signedDistance(const Vec3& local, Vec3& normal) const { return m_grid->query(local, normal); }
 
 bool SurfaceTool::localBounds(double margin, Vec3& lo, Vec3& hi) const {
     lo = m_tree->lo() - Vec3::Constant(margin);

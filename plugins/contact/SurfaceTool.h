@@ -23,27 +23,16 @@ public:
     double signedDistance(const Vec3& local, Vec3& normal) const override;
     bool localBounds(double margin, Vec3& lo, Vec3& hi) const override;
     double size() const override { return m_size; }
+    bool memoizeDistance() const override { return true; }
 
     /// The surface as read (outwards), its tree and its grid (null before init).
     const TriangleTree* tree() const { return m_tree.get(); }
     const DistanceGrid* grid() const { return m_grid.get(); }
 
     core::Param<FilePath> m_mesh{this, core::ParamSpec("mesh").required().help("the tool's closed surface: .stl (ASCII or binary) or .obj, in metres in the tool's frame, relative to the scene file")};
-    core::Param<int> m_resolution{this, core::ParamSpec("resolution").min(2).help("cells of the signed distance grid along the longest side of the surface's box (the grid takes 4 bytes a node, at most 256 MiB)"), 64};
+    core::Param<int> m_resolution{this, core::ParamSpec("resolution").min(2).help("cells of the signed distance grid along the longest side of the surface's box (8 bytes a node, and 8 bytes a triangle listed in a cell near the surface: at most 256 MiB in all)"), 64};
 
 private:
-    /// The last answers, by their query point (bitwise): a step queries a node's position up to three
-    /// times (projectPositions, projectVelocities, the next projectForces). The query being a function
-    /// of the point alone, a hit gives bitwise the answer it would compute. Not for concurrent calls
-    /// (RigidTool's loops are serial).
-    struct Cached {
-        Vec3 point, normal;
-        double distance;
-        bool valid;
-    };
-    static constexpr size_t kCacheSlots = 4096;
-    mutable std::vector<Cached> m_cache;
-
     std::unique_ptr<TriangleTree> m_tree;
     std::unique_ptr<DistanceGrid> m_grid;
     double m_size = 0;

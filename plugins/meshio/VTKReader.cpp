@@ -1,6 +1,7 @@
 #include "VTKReader.h"
 #include "ReaderSupport.h"
 #include "VTKCells.h"
+#include "VTUDataCheck.h"
 #include "VTUHeaderCheck.h"
 
 #include <vtkCallbackCommand.h>
@@ -271,6 +272,7 @@ void readVtu(const std::string& path, MeshBuilder& b) {
     const VtuLayout layout = checkVtuHeaders(path);  // before VTK allocates what the file announces
     b.origin.elementWord = "cell";
     VtkMessageCatcher catcher;  // for the whole read: VTK prints nothing to the console
+    checkVtuData(path, layout);  // the arrays VTK would read wrongly
     b.report->format = "VTK XML";
     const vtkSmartPointer<vtkUnstructuredGrid> grid = readXmlGrid(path, catcher);
     convertGrid(grid, path, layout, b);

@@ -5,6 +5,7 @@
 
 #include "ReaderSupport.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <string>
@@ -24,10 +25,14 @@ public:
     /// For vtuValueBytes: the file of a layout the check made (it passed, so nothing here fails).
     explicit VtuChecker(const VtuLayout& l)
         : m_t(l.text), m_path(kNoPath), m_header64(l.header64), m_compressed(l.compressed), m_bigEndian(l.bigEndian) {}
+    /// For vtuBlocks: the same, failing with the file's name.
+    VtuChecker(const VtuLayout& l, const std::string& path)
+        : m_t(l.text), m_path(path), m_header64(l.header64), m_compressed(l.compressed), m_bigEndian(l.bigEndian) {}
     VtuLayout takeLayout() {
         m_layout.header64 = m_header64;
         m_layout.compressed = m_compressed;
         m_layout.bigEndian = m_bigEndian;
+        m_layout.compressor = m_compressor;
         return std::move(m_layout);
     }
 
@@ -48,7 +53,7 @@ public:
                 m_pieceAt = p;
                 m_points = count(tag, "NumberOfPoints", p);
                 m_cells = count(tag, "NumberOfCells", p);
-                m_layout.pieces.push_back({p, m_points, m_cells, {}, {}});
+                m_layout.pieces.push_back({p, m_points, m_cells, {}, {}, {}, {}});
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
                        name == "FieldData") {
                 context = name;
@@ -76,6 +81,7 @@ private:
             failAt(at, "VTKFile has byte_order " + quoted(order) + ": expected LittleEndian or BigEndian");
         m_header64 = header == "UInt64";
         m_compressed = !compressor.empty();
+        m_compressor = compressor;
         m_bigEndian = order == "BigEndian";
     }
     [[noreturn]] void failAt(size_t at, const std::string& message) const {
@@ -152,6 +158,13 @@ private:
         return out;
     }
     std::string decodeBase64(size_t at, size_t end, size_t want, size_t where) const {
+        std::string out = base64Bytes(at, end, want);
+        if (out.size() < want) failAt(where, "the base64 data header is shorter than its " + std::to_string(want) + " bytes");
+        return out;
+    }
+    /// Up to `want` bytes of the base64 text from `at` (whitespace skipped), up to `end`, padding or
+    /// a character that is not base64.
+    std::string base64Bytes(size_t at, size_t end, size_t want) const {
         std::string out;
         unsigned buf = 0;
         int bits = 0;
@@ -170,7 +183,6 @@ private:
                 out += char((buf >> bits) & 0xFF);
             }
         }
-        if (out.size() < want) failAt(where, "the base64 data header is shorter than its " + std::to_string(want) + " bytes");
         return out;
     }
 
@@ -231,7 +243,9 @@ private:
         // announced (640 GB): a DataArray says how it is stored
         if (format != "ascii" && format != "binary" && format != "appended")
             failAt(at, "DataArray " + quoted(name) + " has the format " + quoted(format) + ": expected ascii, binary or appended");
-        VtuArrayLayout where{at, format, bodyStart, false, tb};
+        if (context == "Cells" && name == "types" && format == "ascii" && tb > 0 && type.rfind("Float", 0) != 0)
+            asciiIntegers(name, bodyStart);
+        VtuArrayLayout where{at, format, bodyStart, false, tb, type, 0};
         unsigned long long values = 0;
         bool known = true;
         if (format == "ascii" && tb > 0) {  // numbers only: a string array has its own layout
@@ -256,15 +270,39 @@ private:
         } else {
             known = false;  // a String or Bit array: VTK itself judges its layout
         }
+        where.values = values;
         if (!m_layout.pieces.empty() && known) {
+            if (context == "Cells" && name == "offsets") m_layout.pieces.back().offsets = where;
             if (context == "Points") m_layout.pieces.back().points3 = where;
             if (context == "Cells" && name == "connectivity") m_layout.pieces.back().connectivity = where;
+            if (context == "Cells" && name == "types") m_layout.pieces.back().types = where;
         }
         if (known && tuples >= 0 && values != (unsigned long long)tuples * nc)
             failAt(at, "DataArray " + quoted(name) + " of " + context + " holds " + std::to_string(values) +
                            " values, but the Piece's " + (tuples == (long long)m_points && context.find("Point") == 0 ? "NumberOfPoints " : "NumberOfCells ") +
                            std::to_string(tuples) + " needs " + std::to_string((unsigned long long)tuples * nc) +
                            " (" + std::to_string(nc) + " per tuple): the counts lie or the file is truncated");
+    }
+    /// Every number of an ascii array from b is a whole number (VTK 9.1 leaks a types array whose
+    /// text it cannot read as numbers).
+    void asciiIntegers(const std::string& name, size_t b) const {
+        const size_t close = m_t.find('<', b), e = close == std::string::npos ? m_t.size() : close;
+        for (size_t p = b; p < e;) {
+            const char c = m_t[p];
+            if (c == ' ' || c == '\n' || c == '\r' || c == '\t') {
+                ++p;
+                continue;
+            }
+            size_t q = p;
+            while (q < e && !(m_t[q] == ' ' || m_t[q] == '\n' || m_t[q] == '\r' || m_t[q] == '\t')) ++q;
+            const size_t from = m_t[p] == '+' ? p + 1 : p;
+            long long v = 0;
+            const auto [ptr, ec] = std::from_chars(m_t.data() + from, m_t.data() + q, v);
+            if (ec != std::errc() || ptr != m_t.data() + q || q == from)
+                failAt(p, "DataArray " + quoted(name) + " holds " + quoted(m_t.substr(p, std::min<size_t>(q - p, 40))) +
+                              ", not a whole number");
+            p = q;
+        }
     }
     unsigned long long asciiValues(size_t b, size_t e) const {
         unsigned long long n = 0;
@@ -281,6 +319,8 @@ private:
 public:
     /// vtuValueBytes (VTUHeaderCheck.h).
     std::vector<long long> valueBytes(const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) const;
+    /// vtuBlocks (VTUHeaderCheck.h).
+    std::vector<VtuBlock> blocks(const VtuArrayLayout& a) const;
 
 private:
     /// The character of base64 text from `at` (up to `end`) that starts the 4-character group
@@ -307,6 +347,7 @@ private:
     const std::string& m_path;
     VtuLayout m_layout;
     bool m_header64 = false, m_compressed = false, m_bigEndian = false, m_appendedBase64 = false;
+    std::string m_compressor;
     unsigned long long m_points = 0, m_cells = 0;
     size_t m_appended = 0, m_pieceAt = 0;
     bool m_havePoints = false, m_haveTypes = false;
@@ -368,6 +409,49 @@ std::vector<long long> VtuChecker::valueBytes(const VtuArrayLayout& a, const std
     return out;
 }
 
+std::vector<VtuBlock> VtuChecker::blocks(const VtuArrayLayout& a) const {
+    std::vector<VtuBlock> out;
+    if (a.tag == 0 || a.typeBytes <= 0 || a.format == "ascii") return out;
+    size_t end = m_t.size();
+    if (a.format != "appended") {
+        const size_t close = m_t.find('<', a.data);
+        if (close != std::string::npos) end = close;
+    }
+    const size_t w = m_header64 ? 8 : 4;
+    // n bytes from `at`; the header check bounded n by what the file holds
+    auto take = [&](size_t at, unsigned long long n) {
+        std::string bytes = a.base64 ? base64Bytes(at, end, size_t(n)) : m_t.substr(std::min(at, end), size_t(n));
+        if (bytes.size() < n)
+            failAt(at, "the data holds " + std::to_string(bytes.size()) + " of the " + std::to_string(n) +
+                           " bytes its header announces: the " + (a.base64 ? "base64 text is corrupt" : "file is truncated"));
+        return bytes;
+    };
+    if (!m_compressed) {  // one header word, then the values, in one stream
+        const unsigned long long n = words(a.data, end, a.base64, 1, a.tag)[0];
+        out.push_back({a.data, take(a.data, w + n).substr(w), n});
+        return out;
+    }
+    // compressed: the header and the blocks are encoded apart (as in valueBytes)
+    const unsigned long long blocks = words(a.data, end, a.base64, 1, a.tag)[0];
+    if (blocks == 0) return out;
+    const auto h = words(a.data, end, a.base64, 3 + size_t(blocks), a.tag);
+    const unsigned long long blockSize = h[1], last = h[2], headerBytes = (3 + blocks) * w;
+    const size_t blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+    unsigned long long compressed = 0;
+    for (unsigned long long b = 0; b < blocks; ++b) compressed += h[size_t(3 + b)];
+    const std::string all = take(blockData, compressed);
+    Base64Cursor cursor{m_t, blockData, end};
+    unsigned long long before = 0;
+    for (unsigned long long b = 0; b < blocks; ++b) {
+        const unsigned long long c = h[size_t(3 + b)];
+        const long long at = a.base64 ? cursor.at(before) : (long long)(blockData + before);
+        out.push_back({at < 0 ? blockData : size_t(at), all.substr(size_t(before), size_t(c)),
+                       (b + 1 == blocks && last != 0) ? last : blockSize});
+        before += c;
+    }
+    return out;
+}
+
 VtuLayout checkVtuHeaders(const std::string& path) {
     std::string text = readWholeFile(path, true);
     VtuLayout layout;
@@ -378,6 +462,10 @@ VtuLayout checkVtuHeaders(const std::string& path) {
     }
     layout.text = std::move(text);
     return layout;
+}
+
+std::vector<VtuBlock> vtuBlocks(const VtuLayout& layout, const VtuArrayLayout& a, const std::string& path) {
+    return VtuChecker(layout, path).blocks(a);
 }
 
 std::vector<long long> vtuValueBytes(const VtuLayout& layout, const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) {

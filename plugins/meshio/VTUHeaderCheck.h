@@ -15,6 +15,8 @@ struct VtuArrayLayout {
                              ///< appended, the first byte (base64: character) of its header
     bool base64 = false;     ///< the data is base64 text (format binary, or appended base64)
     int typeBytes = 0;       ///< bytes per value (0: a type the check does not know)
+    std::string type;        ///< its type attribute (Int32, Float64, ...)
+    unsigned long long values = 0;  ///< the values it holds (components counted), as its data announces
 };
 
 /// What the header check learned of a .vtu's layout, for errors found after VTK read it: per
@@ -23,10 +25,11 @@ struct VtuLayout {
     struct Piece {
         size_t at = 0;  ///< the byte of "<Piece"
         unsigned long long points = 0, cells = 0;
-        VtuArrayLayout points3, connectivity;  ///< the Points array (3 values per point), the cells' connectivity
+        VtuArrayLayout points3, connectivity, offsets, types;  ///< the Points array (3 values per point), the cells' connectivity, offsets and types
     };
     std::vector<Piece> pieces;
     bool header64 = false, compressed = false, bigEndian = false;
+    std::string compressor;  ///< the VTKFile's compressor class (empty: none)
     std::string text;  ///< the file
 };
 
@@ -38,6 +41,20 @@ struct VtuLayout {
 /// compressed blocks that would expand more than any of VTK's compressors can; a Piece with points
 /// but no Points array, or with cells but no cell types array. Returns what it learned.
 VtuLayout checkVtuHeaders(const std::string& path);
+
+/// The stored data of a binary or appended array, decoded from base64 where it is base64: one block
+/// of its values' bytes (size: the bytes its header announces) when the file is not compressed, else
+/// each compressed block with the bytes it must expand to. Fails, located, when the base64 text
+/// holds fewer bytes than announced. Empty for an ascii array, or one of a type the check does not
+/// know. The reader decompresses a piece's cell types with it before VTK reads them: VTK 9.1 leaks
+/// a types array it cannot read (vtkXMLUnstructuredGridReader::ReadPieceData returns without
+/// freeing it; found by fuzz_vtu, docs/robustness.md).
+struct VtuBlock {
+    size_t at = 0;                 ///< the block's first byte (base64: character) in the file
+    std::string bytes;             ///< its stored bytes (compressed, when the file is)
+    unsigned long long size = 0;   ///< the bytes it holds uncompressed
+};
+std::vector<VtuBlock> vtuBlocks(const VtuLayout& layout, const VtuArrayLayout& a, const std::string& path);
 
 /// The bytes in the file of values indices[0] <= indices[1] <= ... of array a (value k: the k-th
 /// number of the array, components counted): in ascii data, the number's first character; in

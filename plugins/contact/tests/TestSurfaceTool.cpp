@@ -1,7 +1,7 @@
 // The SurfaceTool and its signed distance: the grid and the exact refinement against the exact
 // distance of voxel shapes, a tessellated box as a plate (the PlaneTool's result), a tessellated
 // sphere indenting a block (between the SphereTools of its inradius and its radius), force and
-// torque about the reference point, and the same result on 1 and 2 threads.
+// torque about the reference point, the same result on 1 and 2 threads, and the grid's memory limit.
 #include "ContactTestSupport.h"
 #include "DistanceGrid.h"
 #include "SurfaceMeshes.h"
@@ -313,4 +313,25 @@ TEST_CASE("The distance grid's cell lists give bitwise the tree's closest point"
     checkListsAgainstTree(icosphere(4, 0.02, Vec3(0.001, 0.002, 0.003)), 40, 20000);
     const fascia::surface::TriangleSurface probe = fascia::surface::readSurface(std::string(FASCIA_SOURCE_DIR) + "/scenes/meshes/probe.obj");
     checkListsAgainstTree(Mesh{probe.points, probe.triangles}, 64, 20000);
+}
+
+TEST_CASE("The distance grid's memory limit counts its cell lists, for any thread count", "[SurfaceTool][DistanceGrid]") {
+    const Mesh ball = icosphere(3, 0.02, Vec3::Zero());
+    const TriangleTree tree(ball.points, ball.triangles);
+    const DistanceGrid full(tree, 24);
+    const double nodes = DistanceGrid::bytesFor(full.counts());
+    const double total = double(full.bytes() + full.listBytes());
+    // 8 bytes a node and one more offset, and 8 bytes an entry
+    CHECK(nodes + 4 == total - 8.0 * double(full.listEntries()));
+    REQUIRE(full.listEntries() > 1000);
+    const int before = omp_get_max_threads();
+    for (int threads : {1, 2}) {
+        omp_set_num_threads(threads);
+        CAPTURE(threads);
+        const DistanceGrid exact(tree, 24, total);  // the exact total fits
+        CHECK(exact.listEntries() == full.listEntries());
+        CHECK_THROWS_AS(DistanceGrid(tree, 24, total - 8), DistanceGrid::TooLarge);  // one entry less does not
+        CHECK_THROWS_AS(DistanceGrid(tree, 24, nodes + 3), DistanceGrid::TooLarge);  // nor do the nodes alone
+    }
+    omp_set_num_threads(before);
 }
