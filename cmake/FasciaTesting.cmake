@@ -21,6 +21,13 @@ set(FASCIA_PARAM_LOG_FILE ${PROJECT_BINARY_DIR}/Testing/param-coverage.log)
 set_property(GLOBAL PROPERTY FASCIA_CATCH_TESTS "")
 set_property(GLOBAL PROPERTY FASCIA_SCRIPT_TESTS "")
 
+# a test's time limit: the sanitizer build runs some 5 to 10 times slower (the Hertz test: over 300 s)
+if(FASCIA_SANITIZE)
+  set(FASCIA_TEST_TIMEOUT 1800)
+else()
+  set(FASCIA_TEST_TIMEOUT 300)
+endif()
+
 function(fascia_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;PROPERTIES" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
@@ -31,7 +38,7 @@ function(fascia_add_test)
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin/tests)
   catch_discover_tests(${T_NAME} WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
                        EXTRA_ARGS -w NoTests
-                       PROPERTIES TIMEOUT 300
+                       PROPERTIES TIMEOUT ${FASCIA_TEST_TIMEOUT}
                                   ENVIRONMENT "FASCIA_PARAM_LOG=${PROJECT_BINARY_DIR}/Testing/param-coverage.log"
                                   FIXTURES_REQUIRED fascia_param_log
                                   ${T_PROPERTIES})

@@ -9,9 +9,11 @@
 namespace fascia::meshio::detail {
 
 /// Fails with an error at the byte of the problem ("file: byte N: error: ...") when, in a Piece:
-/// - a compressed block of its cell types does not expand to the bytes its header announces, or an
-///   ascii types array holds something other than whole numbers (VTK 9.1 leaks a types array it
-///   cannot read: vtkXMLUnstructuredGridReader::ReadPieceData returns without freeing it);
+/// - a compressed block of one of its arrays does not expand to the bytes its header announces
+///   (VTK 9.1 then dereferences a null array in vtkXMLDataReader::ReadPieceData for a point or
+///   cell data array, and leaks a cell types array it cannot read:
+///   vtkXMLUnstructuredGridReader::ReadPieceData returns without freeing it), or an ascii types
+///   array holds something other than whole numbers (the same leak);
 /// - its cell offsets are not whole numbers that never decrease from 0, up to at most the values
 ///   its connectivity array holds (VTK 9.1 allocates the connectivity the last offset announces:
 ///   2^58 entries for a file of 1.3 kB). Compressed offsets are decompressed to be read.

@@ -37,7 +37,7 @@ public:
     }
 
     void run() {
-        const size_t appended = m_t.find("<AppendedData");
+        const size_t appended = appendedTag();
         const std::string_view xml = std::string_view(m_t).substr(0, appended);
         if (appended != std::string::npos) appendedStart(appended);
         std::string context;
@@ -53,7 +53,7 @@ public:
                 m_pieceAt = p;
                 m_points = count(tag, "NumberOfPoints", p);
                 m_cells = count(tag, "NumberOfCells", p);
-                m_layout.pieces.push_back({p, m_points, m_cells, {}, {}, {}, {}});
+                m_layout.pieces.push_back({p, m_points, m_cells, {}, {}, {}, {}, {}});
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
                        name == "FieldData") {
                 context = name;
@@ -122,6 +122,15 @@ private:
             failAt(m_pieceAt, "the Piece announces " + std::to_string(m_cells) + " cells but has no cell types array: the file is incomplete or truncated");
         m_points = m_cells = 0;
         m_havePoints = m_haveTypes = false;
+    }
+    /// The byte of the <AppendedData> tag (npos: none). Its name alone: VTK 9.1 takes no
+    /// <AppendedDataA> for it and then reads appended arrays through a null stream.
+    size_t appendedTag() const {
+        for (size_t p = m_t.find("<AppendedData"); p != std::string::npos; p = m_t.find("<AppendedData", p + 1)) {
+            const size_t e = p + 13;
+            if (e < m_t.size() && (m_t[e] == ' ' || m_t[e] == '\t' || m_t[e] == '\n' || m_t[e] == '\r' || m_t[e] == '>')) return p;
+        }
+        return std::string::npos;
     }
     void appendedStart(size_t tagAt) {
         const size_t u = m_t.find('_', tagAt);
@@ -245,7 +254,7 @@ private:
             failAt(at, "DataArray " + quoted(name) + " has the format " + quoted(format) + ": expected ascii, binary or appended");
         if (context == "Cells" && name == "types" && format == "ascii" && tb > 0 && type.rfind("Float", 0) != 0)
             asciiIntegers(name, bodyStart);
-        VtuArrayLayout where{at, format, bodyStart, false, tb, type, 0};
+        VtuArrayLayout where{at, format, bodyStart, false, tb, type, name, 0};
         unsigned long long values = 0;
         bool known = true;
         if (format == "ascii" && tb > 0) {  // numbers only: a string array has its own layout
@@ -272,6 +281,7 @@ private:
         }
         where.values = values;
         if (!m_layout.pieces.empty() && known) {
+            m_layout.pieces.back().arrays.push_back(where);
             if (context == "Cells" && name == "offsets") m_layout.pieces.back().offsets = where;
             if (context == "Points") m_layout.pieces.back().points3 = where;
             if (context == "Cells" && name == "connectivity") m_layout.pieces.back().connectivity = where;

@@ -16,6 +16,7 @@ struct VtuArrayLayout {
     bool base64 = false;     ///< the data is base64 text (format binary, or appended base64)
     int typeBytes = 0;       ///< bytes per value (0: a type the check does not know)
     std::string type;        ///< its type attribute (Int32, Float64, ...)
+    std::string name;        ///< its Name attribute
     unsigned long long values = 0;  ///< the values it holds (components counted), as its data announces
 };
 
@@ -26,6 +27,7 @@ struct VtuLayout {
         size_t at = 0;  ///< the byte of "<Piece"
         unsigned long long points = 0, cells = 0;
         VtuArrayLayout points3, connectivity, offsets, types;  ///< the Points array (3 values per point), the cells' connectivity, offsets and types
+        std::vector<VtuArrayLayout> arrays;  ///< every DataArray of the Piece of a known numeric type, in file order
     };
     std::vector<Piece> pieces;
     bool header64 = false, compressed = false, bigEndian = false;

@@ -10,14 +10,16 @@
 // P (3 - 2 nu)/(4 pi G z), is 0.9 % of d at z = 25 R for d/R = 0.1: the finite block stiffens the
 // force by about 1.4 % at most.
 //
-// What limits the accuracy here (measured, docs/performance.md "Contact"): linear tetrahedra are
-// too stiff by O(h): +15, +8 and +6 to +7 % on these meshes, falling with h; a mesh with 12 cells
-// in the fine zone (22k nodes, a block 40 R) gives +4.6 % at d/R = 0.02 but takes 25,000 iterations
-// for its first load step, minutes. So the finest mesh that fits a test's budget is held to 8 %,
-// and the errors must fall with refinement at every depth.
+// What limits the accuracy here (measured, docs/performance.md "Contact"): the far field as much
+// as the fine zone. With the spacing growing by 1.5 a cell outside the fine zone, the error stalled
+// near +6 % at d/R = 0.1 however fine the zone (+7.0 % at 8 cells, +6.05 % at 12); growing by 1.25
+// it falls with every refinement of the zone, +8.0, +5.6, +5.0, +4.4 % at 4, 6, 8 and 10 cells
+// (linear tetrahedra too stiff by O(h)). The test runs 6, 8 and 10 cells (19,683 to 35,937 nodes),
+// holds the finest to 5 % and the errors to fall with refinement at every depth.
 //
 // To study other meshes: FASCIA_HERTZ_CELLS="8 12" (cells across the fine zone, coarse to fine; the
-// last one is held to 8 %) and FASCIA_HERTZ_GROWTH=1.3 (the spacing ratio outside it).
+// last one is held to 5 %), FASCIA_HERTZ_GROWTH=1.5 (the spacing ratio outside it) and
+// FASCIA_HERTZ_FINE=0.6 (the fine zone's half-width, in R).
 #include "ContactTestSupport.h"
 #include "DynamicRelaxation.h"
 #include "fascia/plugin/Registry.h"
@@ -44,10 +46,11 @@ namespace {
 
 constexpr double kR = 0.01;              // sphere radius (m)
 constexpr double kE = 3000, kNu = 0.3;  // Young's modulus (Pa), Poisson's ratio
-constexpr double kFine = 0.4 * kR;       // half-width of the uniform zone (a = 0.32 R at d/R = 0.1)
+// half-width of the uniform zone (a = 0.32 R at d/R = 0.1; FASCIA_HERTZ_FINE, in R)
+const double kFine = (std::getenv("FASCIA_HERTZ_FINE") ? std::atof(std::getenv("FASCIA_HERTZ_FINE")) : 0.4) * kR;
 constexpr double kSize = 25 * kR;        // block width (quarter) and depth
 // spacing ratio outside the fine zone (FASCIA_HERTZ_GROWTH)
-const double gGrowth = std::getenv("FASCIA_HERTZ_GROWTH") ? std::atof(std::getenv("FASCIA_HERTZ_GROWTH")) : 1.5;
+const double gGrowth = std::getenv("FASCIA_HERTZ_GROWTH") ? std::atof(std::getenv("FASCIA_HERTZ_GROWTH")) : 1.25;
 const double kDepths[3] = {0.02, 0.05, 0.1};  // d/R of the three load steps
 
 /// Test only: nodal masses shaped like the diagonal of the stiffness of the grid's tetrahedra,
@@ -55,8 +58,8 @@ const double kDepths[3] = {0.02, 0.05, 0.1};  // d/R of the three load steps
 /// the tetrahedron's cell, h the smallest spacing). DynamicRelaxation's fictitious mass takes the
 /// shape of the scene's mass and a static solution does not depend on it. Shaped so, every element
 /// has about the same highest frequency (a Jacobi scaling); with a volume-lumped mass the highest
-/// element frequencies of this graded mesh would be some 170 times apart (its largest spacing over
-/// its smallest), and the relaxation's iterations grow with that ratio.
+/// element frequencies of these graded meshes would be some 90 to 140 times apart (their largest
+/// spacing over their smallest), and the relaxation's iterations grow with that ratio.
 class StiffnessShapedMass : public fascia::core::BaseMass {
 public:
     void init() override {
@@ -206,15 +209,16 @@ TEST_CASE("A rigid sphere indenting a large block follows Hertz's force and cont
         return true;
     }();
     (void)registered;
-    // one thread: some 10k nodes, where a second thread's barriers cost more than they give on a
-    // loaded machine (the result does not depend on it)
+    // one thread: 20k to 36k nodes, on a 2-core machine whose other core runs another test (ctest
+    // -j 2), where a second thread's barriers cost more than they give (the result does not depend
+    // on it)
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     const fs::path dir = fs::temp_directory_path() / ("fascia-hertz-" + std::to_string(getpid()));
     fs::create_directories(dir);
     const double Estar = kE / (1 - kNu * kNu);
     std::vector<int> meshes;  // cells across the fine zone (FASCIA_HERTZ_CELLS)
-    std::istringstream cells(std::getenv("FASCIA_HERTZ_CELLS") ? std::getenv("FASCIA_HERTZ_CELLS") : "4 6 8");
+    std::istringstream cells(std::getenv("FASCIA_HERTZ_CELLS") ? std::getenv("FASCIA_HERTZ_CELLS") : "6 8 10");
     for (int c; cells >> c;) meshes.push_back(c);
     REQUIRE(!meshes.empty());
     REQUIRE(gGrowth > 1);
@@ -239,12 +243,13 @@ TEST_CASE("A rigid sphere indenting a large block follows Hertz's force and cont
                         1e3 * got.outer, 1e3 * a, 1e3 * kFine / meshes[m]);
             if (m == finest) {
                 CAPTURE(k, got.force, F, got.inner, got.outer, a);
-                CHECK(std::abs(err[m][k]) < 0.08);
+                CHECK(std::abs(err[m][k]) < 0.05);
                 // the contact's edge, the outermost top node in contact (at rest), within one element
-                // of a = sqrt(R d); no top node nearer the axis out of contact
+                // of a = sqrt(R d); no top node nearer the axis out of contact (one as far may be:
+                // the 6-tetrahedron split of a cell is not symmetric under x <-> y; to round-off)
                 const double h = kFine / meshes[m];
                 CHECK(std::abs(got.inner - a) <= h);
-                CHECK(got.outer > got.inner);
+                CHECK(got.outer > got.inner - 1e-12);
             }
         }
     }
