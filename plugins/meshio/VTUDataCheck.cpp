@@ -117,8 +117,9 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
 
 void checkVtuData(const std::string& path, const VtuLayout& l) {
     for (const VtuLayout::Piece& p : l.pieces) {
-        if (l.compressed)  // every block decompresses, or fails
-            for (const VtuArrayLayout& a : p.arrays) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name));
+        // every array's base64 text decodes and every compressed block decompresses, or fails
+        for (const VtuArrayLayout& a : p.arrays)
+            if (l.compressed || a.base64) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name));
         if (p.connectivity.tag != 0 && p.connectivity.typeBytes > 0) checkOffsets(path, l, p.offsets, p.connectivity.values);
     }
 }

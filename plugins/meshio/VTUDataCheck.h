@@ -9,7 +9,9 @@
 namespace fascia::meshio::detail {
 
 /// Fails with an error at the byte of the problem ("file: byte N: error: ...") when, in a Piece:
-/// - a compressed block of one of its arrays does not expand to the bytes its header announces
+/// - the base64 text of one of its arrays holds fewer bytes than its header announces (decoded as
+///   VTK does: 4 characters at a time, all of them base64), or a compressed block of one of them
+///   does not expand to the bytes its header announces
 ///   (VTK 9.1 then dereferences a null array in vtkXMLDataReader::ReadPieceData for a point or
 ///   cell data array, and leaks a cell types array it cannot read:
 ///   vtkXMLUnstructuredGridReader::ReadPieceData returns without freeing it), or an ascii types

@@ -171,9 +171,10 @@ private:
         if (out.size() < want) failAt(where, "the base64 data header is shorter than its " + std::to_string(want) + " bytes");
         return out;
     }
-    /// Up to `want` bytes of the base64 text from `at` (whitespace skipped), up to `end`, padding or
-    /// a character that is not base64.
-    std::string base64Bytes(size_t at, size_t end, size_t want) const {
+    /// Up to `want` bytes of the base64 text from `at` (whitespace skipped unless `strict`), up to
+    /// `end`, padding or a character that is not base64. Strict, as VTK 9.1 decodes data (4
+    /// characters at a time, every one base64).
+    std::string base64Bytes(size_t at, size_t end, size_t want, bool strict = false) const {
         std::string out;
         unsigned buf = 0;
         int bits = 0;
@@ -182,7 +183,7 @@ private:
             int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
                     : c == '+' ? 62 : c == '/' ? 63 : -1;
             if (v < 0) {
-                if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+                if (!strict && (c == ' ' || c == '\n' || c == '\r' || c == '\t')) continue;
                 break;  // padding or the end of the data
             }
             buf = (buf << 6) | unsigned(v);
@@ -430,10 +431,10 @@ std::vector<VtuBlock> VtuChecker::blocks(const VtuArrayLayout& a) const {
     const size_t w = m_header64 ? 8 : 4;
     // n bytes from `at`; the header check bounded n by what the file holds
     auto take = [&](size_t at, unsigned long long n) {
-        std::string bytes = a.base64 ? base64Bytes(at, end, size_t(n)) : m_t.substr(std::min(at, end), size_t(n));
+        std::string bytes = a.base64 ? base64Bytes(at, end, size_t(n), true) : m_t.substr(std::min(at, end), size_t(n));
         if (bytes.size() < n)
-            failAt(at, "the data holds " + std::to_string(bytes.size()) + " of the " + std::to_string(n) +
-                           " bytes its header announces: the " + (a.base64 ? "base64 text is corrupt" : "file is truncated"));
+            failAt(at, "DataArray " + quoted(a.name) + " holds " + std::to_string(bytes.size()) + " of the " + std::to_string(n) +
+                           " bytes its header announces: " + (a.base64 ? "its base64 text is corrupt" : "the file is truncated"));
         return bytes;
     };
     if (!m_compressed) {  // one header word, then the values, in one stream

@@ -17,9 +17,11 @@
 // (linear tetrahedra too stiff by O(h)). The test runs 6, 8 and 10 cells (19,683 to 35,937 nodes),
 // holds the finest to 5 % and the errors to fall with refinement at every depth.
 //
-// To study other meshes: FASCIA_HERTZ_CELLS="8 12" (cells across the fine zone, coarse to fine; the
-// last one is held to 5 %), FASCIA_HERTZ_GROWTH=1.5 (the spacing ratio outside it) and
-// FASCIA_HERTZ_FINE=0.6 (the fine zone's half-width, in R).
+// To study other meshes: FASCIA_HERTZ_CELLS="8 12" (cells across the fine zone, coarse to fine),
+// FASCIA_HERTZ_GROWTH=1.5 (the spacing ratio outside it), FASCIA_HERTZ_FINE=0.6 (the fine zone's
+// half-width, in R) and FASCIA_HERTZ_BOUND=0.1 (the error allowed on the finest mesh, 0.05 by
+// default). The sanitizer build (tests/sanitizer/Sanitize.sh), some 20 times slower, runs the
+// 4- and 6-cell meshes within 15 %: the same code on smaller meshes.
 #include "ContactTestSupport.h"
 #include "DynamicRelaxation.h"
 #include "fascia/plugin/Registry.h"
@@ -46,6 +48,8 @@ namespace {
 
 constexpr double kR = 0.01;              // sphere radius (m)
 constexpr double kE = 3000, kNu = 0.3;  // Young's modulus (Pa), Poisson's ratio
+// the error allowed on the finest mesh (FASCIA_HERTZ_BOUND)
+const double gBound = std::getenv("FASCIA_HERTZ_BOUND") ? std::atof(std::getenv("FASCIA_HERTZ_BOUND")) : 0.05;
 // half-width of the uniform zone (a = 0.32 R at d/R = 0.1; FASCIA_HERTZ_FINE, in R)
 const double kFine = (std::getenv("FASCIA_HERTZ_FINE") ? std::atof(std::getenv("FASCIA_HERTZ_FINE")) : 0.4) * kR;
 constexpr double kSize = 25 * kR;        // block width (quarter) and depth
@@ -243,7 +247,7 @@ TEST_CASE("A rigid sphere indenting a large block follows Hertz's force and cont
                         1e3 * got.outer, 1e3 * a, 1e3 * kFine / meshes[m]);
             if (m == finest) {
                 CAPTURE(k, got.force, F, got.inner, got.outer, a);
-                CHECK(std::abs(err[m][k]) < 0.05);
+                CHECK(std::abs(err[m][k]) < gBound);
                 // the contact's edge, the outermost top node in contact (at rest), within one element
                 // of a = sqrt(R d); no top node nearer the axis out of contact (one as far may be:
                 // the 6-tetrahedron split of a cell is not symmetric under x <-> y; to round-off)
