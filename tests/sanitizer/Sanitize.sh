@@ -1,6 +1,6 @@
 #!/bin/sh
 # `make sanitize`: configures BUILD_DIR with FASCIA_SANITIZE=ON (ASan + UBSan, -fno-sanitize-recover,
-# RelWithDebInfo) and the compiler CXX, builds everything with JOBS jobs, runs the whole ctest suite
+# -O1 -g1) and the compiler CXX, builds everything with JOBS jobs, runs the whole ctest suite
 # under the sanitizers and prints how long the build and the tests took.
 #   tests/sanitizer/Sanitize.sh BUILD_DIR CXX JOBS [cmake options...]
 set -u
@@ -12,8 +12,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 launcher=""
 command -v ccache > /dev/null 2>&1 && launcher=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 start=$(date +%s)
+# -O1 -g1 instead of RelWithDebInfo's -O2 -g: the instrumented build is the slow part of this target
+# (TLEDForceField.cpp compiles in 18.7 s instead of 33.0 s), and -O1 keeps the stack traces exact
 cmake -S "$here/../.." -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$cxx" \
-      -DFASCIA_SANITIZE=ON $launcher "$@" || exit 1
+      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DFASCIA_SANITIZE=ON $launcher "$@" || exit 1
 cmake --build "$build" -j "$jobs" || exit 1
 built=$(date +%s)
 # leaks are errors; the suppressions say why each one is not ours (tests/sanitizer/lsan.supp)
