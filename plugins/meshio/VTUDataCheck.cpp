@@ -10,7 +10,9 @@
 #include <vtkZLibDataCompressor.h>
 
 #include <charconv>
+#include <algorithm>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace fascia::meshio::detail {
@@ -57,28 +59,48 @@ bool integerAt(const std::string& bytes, const VtuArrayLayout& a, bool bigEndian
     return true;
 }
 
-/// The whole numbers of an ascii array's text; false (and `bad` at the token) when one is not.
-bool asciiIntegers(const std::string& t, size_t from, std::vector<long long>& out, size_t& bad) {
-    const size_t close = t.find('<', from), end = close == std::string::npos ? t.size() : close;
+/// The numbers of an ascii array, each as VTK 9.1 reads it (an istream of the array's type, which
+/// fails on anything else: VTK then dereferences a null array or leaks the cell types; found by
+/// fuzz_vtu): whole numbers within the type's range for an integer type (into `out`), decimal
+/// numbers for a float type (no nan, inf or hexadecimal).
+void asciiNumbers(const std::string& path, const std::string& t, const VtuArrayLayout& a, std::vector<long long>* out) {
+    const size_t close = t.find('<', a.data), end = close == std::string::npos ? t.size() : close;
     auto space = [](char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; };
-    for (size_t p = from; p < end;) {
+    const bool real = a.type.rfind("Float", 0) == 0, isSigned = a.type[0] == 'I';
+    const int bits = 8 * a.typeBytes;
+    // VTK reads 8-bit values through an int
+    const long long lo = !isSigned ? 0 : bits >= 64 || bits == 8 ? INT64_MIN : -(1ll << (bits - 1));
+    const unsigned long long hi = bits == 8 ? (unsigned long long)INT64_MAX
+                                  : bits >= 64 ? (isSigned ? (unsigned long long)INT64_MAX : UINT64_MAX)
+                                               : (isSigned ? (1ull << (bits - 1)) - 1 : (1ull << bits) - 1);
+    for (size_t p = a.data; p < end;) {
         if (space(t[p])) {
             ++p;
             continue;
         }
         size_t q = p;
         while (q < end && !space(t[q])) ++q;
-        const size_t s = t[p] == '+' ? p + 1 : p;
+        const char *b = t.data() + p, *e = t.data() + q;
+        bool ok = false;
         long long v = 0;
-        const auto [ptr, ec] = std::from_chars(t.data() + s, t.data() + q, v);
-        if (ec != std::errc() || ptr != t.data() + q || q == s) {
-            bad = p;
-            return false;
+        if (real) {
+            double d = 0;
+            ok = std::string_view(b, size_t(e - b)).find_first_not_of("0123456789+-.eE") == std::string_view::npos &&
+                 std::from_chars(b + (*b == '+'), e, d).ptr == e;
+        } else if (*b == '-') {
+            ok = std::from_chars(b, e, v).ptr == e && v >= lo && isSigned;
+        } else {
+            unsigned long long u = 0;
+            const auto r = std::from_chars(b + (*b == '+'), e, u);
+            ok = r.ec == std::errc() && r.ptr == e && u <= hi && e > b + (*b == '+');
+            v = (long long)std::min<unsigned long long>(u, (unsigned long long)INT64_MAX);
         }
-        out.push_back(v);
+        if (!ok)
+            failAtByte(path, (long long)p, "DataArray " + detail::quoted(a.name) + " holds " + detail::quoted(t.substr(p, std::min<size_t>(q - p, 40))) +
+                                               (real ? ", not a decimal number" : ", not a whole number of its type " + a.type));
+        if (out) out->push_back(v);
         p = q;
     }
-    return true;
 }
 
 /// A Piece's offsets: whole numbers from >= 0, never decreasing, the last at most `limit`.
@@ -86,9 +108,9 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
     if (a.tag == 0 || a.typeBytes <= 0) return;
     std::vector<long long> v;
     if (a.format == "ascii") {
-        size_t bad = 0;
-        if (!asciiIntegers(l.text, a.data, v, bad))
-            failAtByte(path, (long long)bad, "the cell offsets array holds " + detail::quoted(l.text.substr(bad, 20)) + ", not a whole number");
+        if (a.type.rfind("Float", 0) == 0)
+            failAtByte(path, (long long)a.tag, "the cell offsets array has the type " + detail::quoted(a.type) + ": expected whole numbers");
+        asciiNumbers(path, l.text, a, &v);
     } else {
         const std::string bytes = valueData(path, l, a, "cell offsets");
         const size_t n = bytes.size() / size_t(a.typeBytes);
@@ -118,8 +140,10 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
 void checkVtuData(const std::string& path, const VtuLayout& l) {
     for (const VtuLayout::Piece& p : l.pieces) {
         // every array's base64 text decodes and every compressed block decompresses, or fails
-        for (const VtuArrayLayout& a : p.arrays)
-            if (l.compressed || a.base64) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name));
+        for (const VtuArrayLayout& a : p.arrays) {
+            if (a.format == "ascii") asciiNumbers(path, l.text, a, nullptr);
+            else if (l.compressed || a.base64) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name));
+        }
         if (p.connectivity.tag != 0 && p.connectivity.typeBytes > 0) checkOffsets(path, l, p.offsets, p.connectivity.values);
     }
 }

@@ -253,8 +253,6 @@ private:
         // announced (640 GB): a DataArray says how it is stored
         if (format != "ascii" && format != "binary" && format != "appended")
             failAt(at, "DataArray " + quoted(name) + " has the format " + quoted(format) + ": expected ascii, binary or appended");
-        if (context == "Cells" && name == "types" && format == "ascii" && tb > 0 && type.rfind("Float", 0) != 0)
-            asciiIntegers(name, bodyStart);
         VtuArrayLayout where{at, format, bodyStart, false, tb, type, name, 0};
         unsigned long long values = 0;
         bool known = true;
@@ -293,27 +291,6 @@ private:
                            " values, but the Piece's " + (tuples == (long long)m_points && context.find("Point") == 0 ? "NumberOfPoints " : "NumberOfCells ") +
                            std::to_string(tuples) + " needs " + std::to_string((unsigned long long)tuples * nc) +
                            " (" + std::to_string(nc) + " per tuple): the counts lie or the file is truncated");
-    }
-    /// Every number of an ascii array from b is a whole number (VTK 9.1 leaks a types array whose
-    /// text it cannot read as numbers).
-    void asciiIntegers(const std::string& name, size_t b) const {
-        const size_t close = m_t.find('<', b), e = close == std::string::npos ? m_t.size() : close;
-        for (size_t p = b; p < e;) {
-            const char c = m_t[p];
-            if (c == ' ' || c == '\n' || c == '\r' || c == '\t') {
-                ++p;
-                continue;
-            }
-            size_t q = p;
-            while (q < e && !(m_t[q] == ' ' || m_t[q] == '\n' || m_t[q] == '\r' || m_t[q] == '\t')) ++q;
-            const size_t from = m_t[p] == '+' ? p + 1 : p;
-            long long v = 0;
-            const auto [ptr, ec] = std::from_chars(m_t.data() + from, m_t.data() + q, v);
-            if (ec != std::errc() || ptr != m_t.data() + q || q == from)
-                failAt(p, "DataArray " + quoted(name) + " holds " + quoted(m_t.substr(p, std::min<size_t>(q - p, 40))) +
-                              ", not a whole number");
-            p = q;
-        }
     }
     unsigned long long asciiValues(size_t b, size_t e) const {
         unsigned long long n = 0;
