@@ -26,13 +26,15 @@ vtkSmartPointer<vtkDataCompressor> compressorFor(const VtuLayout& l) {
 
 /// The bytes of a binary or appended array's values, decompressed where the file is compressed;
 /// each block must expand to the bytes its header announces (`what` names the array in the error).
-std::string valueData(const std::string& path, const VtuLayout& l, const VtuArrayLayout& a, const std::string& what) {
+/// Without `keep`, only the check: one block in memory at a time.
+std::string valueData(const std::string& path, const VtuLayout& l, const VtuArrayLayout& a, const std::string& what, bool keep) {
     const std::vector<VtuBlock> blocks = vtuBlocks(l, a, path);
     if (!l.compressed) return blocks.empty() ? std::string() : blocks[0].bytes;
     vtkSmartPointer<vtkDataCompressor> z = compressorFor(l);
     std::string out;
     for (size_t k = 0; k < blocks.size(); ++k) {
         const VtuBlock& b = blocks[k];
+        if (!keep) out.clear();
         const size_t first = out.size();
         out.resize(first + size_t(b.size));
         const size_t got = b.size == 0 ? 0 :
@@ -112,7 +114,7 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
             failAtByte(path, (long long)a.tag, "the cell offsets array has the type " + detail::quoted(a.type) + ": expected whole numbers");
         asciiNumbers(path, l.text, a, &v);
     } else {
-        const std::string bytes = valueData(path, l, a, "cell offsets");
+        const std::string bytes = valueData(path, l, a, "cell offsets", true);
         const size_t n = bytes.size() / size_t(a.typeBytes);
         v.resize(n);
         for (size_t k = 0; k < n; ++k)
@@ -142,7 +144,7 @@ void checkVtuData(const std::string& path, const VtuLayout& l) {
         // every array's base64 text decodes and every compressed block decompresses, or fails
         for (const VtuArrayLayout& a : p.arrays) {
             if (a.format == "ascii") asciiNumbers(path, l.text, a, nullptr);
-            else if (l.compressed || a.base64) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name));
+            else if (l.compressed || a.base64) valueData(path, l, a, a.tag == p.types.tag ? "cell types" : detail::quoted(a.name), false);
         }
         if (p.connectivity.tag != 0 && p.connectivity.typeBytes > 0) checkOffsets(path, l, p.offsets, p.connectivity.values);
     }

@@ -46,7 +46,13 @@ public:
             if (e == std::string_view::npos) break;
             const std::string_view tag = xml.substr(p + 1, e - p - 1);
             const std::string name(tag.substr(0, tag.find_first_of(" \t\r\n/>")));
+            if (m_fileAt == std::string::npos && (name == "Piece" || name == "DataArray"))  // how is it stored?
+                failAt(p, "a <" + name + "> before any <VTKFile> tag: a .vtu file starts with <VTKFile type=\"UnstructuredGrid\" ...>");
             if (name == "VTKFile") {
+                // one root: its attributes say how every array is stored
+                if (m_fileAt != std::string::npos)
+                    failAt(p, "a second <VTKFile> tag (the first is at byte " + std::to_string(m_fileAt) + "): a .vtu has one root element");
+                m_fileAt = p;
                 fileAttributes(tag, p);
             } else if (name == "Piece") {
                 pieceEnd();
@@ -337,7 +343,7 @@ private:
     bool m_header64 = false, m_compressed = false, m_bigEndian = false, m_appendedBase64 = false;
     std::string m_compressor;
     unsigned long long m_points = 0, m_cells = 0;
-    size_t m_appended = 0, m_pieceAt = 0;
+    size_t m_appended = 0, m_pieceAt = 0, m_fileAt = std::string::npos;
     bool m_havePoints = false, m_haveTypes = false;
 };
 
