@@ -139,10 +139,13 @@ private:
         return std::string::npos;
     }
     void appendedStart(size_t tagAt) {
-        const size_t u = m_t.find('_', tagAt);
-        if (u == std::string::npos) failAt(tagAt, "<AppendedData> has no '_' before its data");
-        m_appended = u + 1;
+        // VTK 9.1 takes the data to start one character after the first non-space after the tag
+        // (that character being the '_'): anything else there shifts every appended array
         const size_t tagEnd = m_t.find('>', tagAt);
+        size_t u = tagEnd == std::string::npos ? m_t.size() : tagEnd + 1;
+        while (u < m_t.size() && (m_t[u] == ' ' || m_t[u] == '\t' || m_t[u] == '\n' || m_t[u] == '\r')) ++u;
+        if (u >= m_t.size() || m_t[u] != '_') failAt(tagAt, "<AppendedData> has no '_' right before its data");
+        m_appended = u + 1;
         const std::string encoding = attribute(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "encoding");
         // VTK 9.1 has no data stream for another encoding and reads through a null one
         if (encoding != "raw" && encoding != "base64")
