@@ -32,14 +32,16 @@ for t in $targets; do
   regressions=""
   [ -d "$src/regressions/$t" ] && regressions="$src/regressions/$t"
   echo "fuzzing $t for $seconds s (log: $log)"
+  start=$(date +%s)
   "$exe" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-30}" -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
          -dict="$src/dict/$t.dict" -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
          "$build/corpus/$t" "$src/corpus/$t" $regressions > "$log" 2>&1
   rc=$?
+  took=$(( $(date +%s) - start ))  # less than SECONDS when a finding stopped it
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -n 1 | sed 's/cov: //')
   found=$(find "$build/findings/$t" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
-  line=$(printf '%-11s %6s s  %10s execs  cov %6s  findings %s (exit %s)' "$t" "$seconds" "${execs:-?}" "${cov:-?}" "$found" "$rc")
+  line=$(printf '%-11s %6s s  %10s execs  cov %6s  findings %s (exit %s)' "$t" "$took" "${execs:-?}" "${cov:-?}" "$found" "$rc")
   echo "$line"
   summary="$summary$line\n"
   if [ "$rc" -ne 0 ] || [ "$found" -ne 0 ]; then
