@@ -10,6 +10,9 @@
 #include <vtkZLibDataCompressor.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
 #include <algorithm>
 #include <cstdint>
 #include <string_view>
@@ -32,14 +35,24 @@ std::string valueData(const std::string& path, const VtuLayout& l, const VtuArra
     if (!l.compressed) return blocks.empty() ? std::string() : blocks[0].bytes;
     vtkSmartPointer<vtkDataCompressor> z = compressorFor(l);
     std::string out;
+    std::unique_ptr<unsigned char[]> scratch;  // without `keep`: not zero-filled, so untouched beyond what inflates
+    size_t scratchSize = 0;
     for (size_t k = 0; k < blocks.size(); ++k) {
         const VtuBlock& b = blocks[k];
-        if (!keep) out.clear();
-        const size_t first = out.size();
-        out.resize(first + size_t(b.size));
+        unsigned char* to = nullptr;
+        if (keep) {
+            const size_t first = out.size();
+            out.resize(first + size_t(b.size));
+            to = reinterpret_cast<unsigned char*>(&out[first]);
+        } else {
+            if (scratchSize < b.size) {
+                scratch.reset(new unsigned char[size_t(b.size)]);
+                scratchSize = size_t(b.size);
+            }
+            to = scratch.get();
+        }
         const size_t got = b.size == 0 ? 0 :
-            z->Uncompress(reinterpret_cast<const unsigned char*>(b.bytes.data()), b.bytes.size(),
-                          reinterpret_cast<unsigned char*>(&out[first]), size_t(b.size));
+            z->Uncompress(reinterpret_cast<const unsigned char*>(b.bytes.data()), b.bytes.size(), to, size_t(b.size));
         if (got != b.size)
             failAtByte(path, (long long)b.at, "compressed block " + std::to_string(k) + " of the " + what + " array does not expand to the " +
                                                   std::to_string(b.size) + " bytes its header announces: the data is corrupt");
@@ -70,11 +83,12 @@ void asciiNumbers(const std::string& path, const std::string& t, const VtuArrayL
     auto space = [](char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; };
     const bool real = a.type.rfind("Float", 0) == 0, isSigned = a.type[0] == 'I';
     const int bits = 8 * a.typeBytes;
-    // VTK reads 8-bit values through an int
-    const long long lo = !isSigned ? 0 : bits >= 64 || bits == 8 ? INT64_MIN : -(1ll << (bits - 1));
-    const unsigned long long hi = bits == 8 ? (unsigned long long)INT64_MAX
+    // VTK reads 8-bit values through a short
+    const long long lo = bits == 8 ? -32768 : !isSigned ? 0 : bits >= 64 ? INT64_MIN : -(1ll << (bits - 1));
+    const unsigned long long hi = bits == 8 ? 32767
                                   : bits >= 64 ? (isSigned ? (unsigned long long)INT64_MAX : UINT64_MAX)
                                                : (isSigned ? (1ull << (bits - 1)) - 1 : (1ull << bits) - 1);
+    std::string token;
     for (size_t p = a.data; p < end;) {
         if (space(t[p])) {
             ++p;
@@ -86,15 +100,20 @@ void asciiNumbers(const std::string& path, const std::string& t, const VtuArrayL
         bool ok = false;
         long long v = 0;
         if (real) {
-            double d = 0;
-            ok = std::string_view(b, size_t(e - b)).find_first_not_of("0123456789+-.eE") == std::string_view::npos &&
-                 std::from_chars(b + (*b == '+'), e, d).ptr == e;
+            // strtod and strtof as the istream: an overflow to infinity fails, an underflow does not
+            token.assign(b, e);
+            char* stop = nullptr;
+            const double d = bits == 32 ? double(std::strtof(token.c_str(), &stop)) : std::strtod(token.c_str(), &stop);
+            ok = token.find_first_not_of("0123456789+-.eE") == std::string::npos && stop == token.c_str() + token.size() &&
+                 !token.empty() && std::isfinite(d);
         } else if (*b == '-') {
-            ok = std::from_chars(b, e, v).ptr == e && v >= lo && isSigned;
+            const auto r = std::from_chars(b, e, v);
+            ok = r.ec == std::errc() && r.ptr == e && v >= lo;
         } else {
             unsigned long long u = 0;
-            const auto r = std::from_chars(b + (*b == '+'), e, u);
-            ok = r.ec == std::errc() && r.ptr == e && u <= hi && e > b + (*b == '+');
+            const char* from = b + (*b == '+');
+            const auto r = std::from_chars(from, e, u);
+            ok = r.ec == std::errc() && r.ptr == e && e > from && u <= hi;
             v = (long long)std::min<unsigned long long>(u, (unsigned long long)INT64_MAX);
         }
         if (!ok)
@@ -123,7 +142,7 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
     }
     long long last = 0;
     for (size_t k = 0; k < v.size(); ++k) {
-        const bool wrong = v[k] < last || (unsigned long long)v[k] > limit;
+        const bool wrong = v[k] < last || v[k] < 0 || (unsigned long long)v[k] > limit;
         if (!wrong) {
             last = v[k];
             continue;
@@ -131,7 +150,8 @@ void checkOffsets(const std::string& path, const VtuLayout& l, const VtuArrayLay
         const long long at = vtuValueBytes(l, a, {k})[0];
         failAtByte(path, at >= 0 ? at : (long long)a.tag,
                    "cell " + std::to_string(k + 1) + "'s offset " + std::to_string(v[k]) +
-                       (v[k] < last ? " is below the one before it (" + std::to_string(last) + "): offsets never decrease"
+                       (v[k] < 0 ? std::string(" is negative")
+                        : v[k] < last ? " is below the one before it (" + std::to_string(last) + "): offsets never decrease"
                                     : " passes the " + std::to_string(limit) + " values of the connectivity array") +
                        ": the file is corrupt");
     }

@@ -46,6 +46,7 @@ public:
             if (e == std::string_view::npos) break;
             const std::string_view tag = xml.substr(p + 1, e - p - 1);
             const std::string name(tag.substr(0, tag.find_first_of(" \t\r\n/>")));
+            if (name == "VTKFile" || name == "Piece" || name == "DataArray") plainAttributes(tag, name, p);
             if (m_fileAt == std::string::npos && (name == "Piece" || name == "DataArray"))  // how is it stored?
                 failAt(p, "a <" + name + "> before any <VTKFile> tag: a .vtu file starts with <VTKFile type=\"UnstructuredGrid\" ...>");
             if (name == "VTKFile") {
@@ -63,6 +64,9 @@ public:
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
                        name == "FieldData") {
                 context = name;
+            } else if (name == "/Points" || name == "/Cells" || name == "/PointData" || name == "/CellData" ||
+                       name == "/FieldData") {
+                context.clear();
             } else if (name == "DataArray") {
                 dataArray(tag, context, p, e + 1);
             }
@@ -93,17 +97,30 @@ private:
     [[noreturn]] void failAt(size_t at, const std::string& message) const {
         failAtByte(m_path, (long long)at, message);
     }
+    static bool space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+    /// The value of attribute `key` (after a space, "=" with optional spaces around it, in double
+    /// quotes, as XML has it; plainAttributes refused single quotes and references).
     static std::string attribute(std::string_view tag, const char* key) {
-        const std::string k = std::string(" ") + key + "=\"";
-        size_t p = tag.find(k);
-        if (p == std::string_view::npos) {
-            const std::string k2 = std::string("\t") + key + "=\"";
-            p = tag.find(k2);
-            if (p == std::string_view::npos) return {};
+        const std::string_view k(key);
+        for (size_t p = tag.find(k); p != std::string_view::npos; p = tag.find(k, p + 1)) {
+            if (p == 0 || !space(tag[p - 1])) continue;
+            size_t q = p + k.size();
+            while (q < tag.size() && space(tag[q])) ++q;
+            if (q >= tag.size() || tag[q] != '=') continue;
+            ++q;
+            while (q < tag.size() && space(tag[q])) ++q;
+            if (q >= tag.size() || tag[q] != '"') continue;
+            const size_t e = tag.find('"', q + 1);
+            return std::string(tag.substr(q + 1, e == std::string_view::npos ? std::string_view::npos : e - q - 1));
         }
-        p += k.size();
-        const size_t e = tag.find('"', p);
-        return std::string(tag.substr(p, e == std::string_view::npos ? std::string_view::npos : e - p));
+        return {};
+    }
+    /// A tag whose attributes the check reads has them in double quotes and without references:
+    /// XML allows single quotes and "&#111;", which the check would not see but VTK's parser would
+    /// (Name="&#111;ffsets" is VTK's offsets array).
+    void plainAttributes(std::string_view tag, const std::string& name, size_t at) const {
+        if (tag.find_first_of("'&") != std::string_view::npos)
+            failAt(at, "the <" + name + "> tag has a ' or an & in it: the check reads attributes in double quotes, without character references");
     }
     unsigned long long count(std::string_view tag, const char* key, size_t at) const {
         const std::string v = attribute(tag, key);
@@ -132,11 +149,12 @@ private:
     /// The byte of the <AppendedData> tag (npos: none). Its name alone: VTK 9.1 takes no
     /// <AppendedDataA> for it and then reads appended arrays through a null stream.
     size_t appendedTag() const {
-        for (size_t p = m_t.find("<AppendedData"); p != std::string::npos; p = m_t.find("<AppendedData", p + 1)) {
-            const size_t e = p + 13;
-            if (e < m_t.size() && (m_t[e] == ' ' || m_t[e] == '\t' || m_t[e] == '\n' || m_t[e] == '\r' || m_t[e] == '>')) return p;
-        }
-        return std::string::npos;
+        const size_t p = m_t.find("<AppendedData");  // VTK 9.1's parser stops at the first, whatever follows
+        if (p == std::string::npos) return p;
+        const size_t e = p + 13;
+        if (!(e < m_t.size() && (space(m_t[e]) || m_t[e] == '>' || m_t[e] == '/')))
+            failAt(p, "a tag named <AppendedData...> but not <AppendedData>: VTK 9.1 takes it for the appended data and finds none");
+        return p;
     }
     void appendedStart(size_t tagAt) {
         // VTK 9.1 takes the data to start one character after the first non-space after the tag
@@ -146,6 +164,7 @@ private:
         while (u < m_t.size() && (m_t[u] == ' ' || m_t[u] == '\t' || m_t[u] == '\n' || m_t[u] == '\r')) ++u;
         if (u >= m_t.size() || m_t[u] != '_') failAt(tagAt, "<AppendedData> has no '_' right before its data");
         m_appended = u + 1;
+        plainAttributes(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "AppendedData", tagAt);
         const std::string encoding = attribute(std::string_view(m_t).substr(tagAt, tagEnd - tagAt), "encoding");
         // VTK 9.1 has no data stream for another encoding and reads through a null one
         if (encoding != "raw" && encoding != "base64")
@@ -220,6 +239,10 @@ private:
         if (blocks > stored / w) failAt(where, "the compressed data header announces " + std::to_string(blocks) +
                                                    " blocks, more than the file holds: the header is corrupt");
         if (blocks == 0) return 0;
+        // VTK 9.1 divides by the block size, and takes the last block to hold at most one
+        if (blockSize == 0 || last > blockSize)
+            failAt(where, "the compressed data header gives a block size of " + std::to_string(blockSize) + " and a last block of " +
+                              std::to_string(last) + " bytes: the header is corrupt");
         const auto sizes = words(at, end, base64, 3 + size_t(blocks), where);
         unsigned long long compressed = 0, total = 0;
         for (unsigned long long b = 0; b < blocks; ++b) {
@@ -245,7 +268,12 @@ private:
         unsigned long long nc = 1;
         if (!comps.empty() && (std::from_chars(comps.data(), comps.data() + comps.size(), nc).ec != std::errc() || nc == 0))
             failAt(at, "DataArray " + quoted(name) + " has NumberOfComponents " + quoted(comps));
-        long long tuples = -1;  // unknown for connectivity and faces
+        // polyhedron cells: VTK 9.1 follows the counts in "faces" without bounds, and Fascia reads
+        // tetrahedra and hexahedra only
+        if (context == "Cells" && (name == "faces" || name == "faceoffsets" || name == "face_connectivity" ||
+                                   name == "face_offsets" || name == "polyhedron_to_faces" || name == "polyhedron_offsets"))
+            failAt(at, "DataArray " + quoted(name) + " describes polyhedron cells: Fascia reads tetrahedra and hexahedra");
+        long long tuples = -1;  // unknown for connectivity
         if (context == "Points" || context == "PointData") tuples = (long long)m_points;
         else if (context == "CellData" || (context == "Cells" && (name == "types" || name == "offsets")))
             tuples = (long long)m_cells;
@@ -290,10 +318,12 @@ private:
         where.values = values;
         if (!m_layout.pieces.empty() && known) {
             m_layout.pieces.back().arrays.push_back(where);
-            if (context == "Cells" && name == "offsets") m_layout.pieces.back().offsets = where;
-            if (context == "Points") m_layout.pieces.back().points3 = where;
-            if (context == "Cells" && name == "connectivity") m_layout.pieces.back().connectivity = where;
-            if (context == "Cells" && name == "types") m_layout.pieces.back().types = where;
+            // the first of a name, as VTK 9.1 takes it (FindDataArrayWithName)
+            VtuLayout::Piece& piece = m_layout.pieces.back();
+            if (context == "Cells" && name == "offsets" && piece.offsets.tag == 0) piece.offsets = where;
+            if (context == "Points" && piece.points3.tag == 0) piece.points3 = where;
+            if (context == "Cells" && name == "connectivity" && piece.connectivity.tag == 0) piece.connectivity = where;
+            if (context == "Cells" && name == "types" && piece.types.tag == 0) piece.types = where;
         }
         if (known && tuples >= 0 && values != (unsigned long long)tuples * nc)
             failAt(at, "DataArray " + quoted(name) + " of " + context + " holds " + std::to_string(values) +
@@ -434,6 +464,9 @@ std::vector<VtuBlock> VtuChecker::blocks(const VtuArrayLayout& a) const {
     const auto h = words(a.data, end, a.base64, 3 + size_t(blocks), a.tag);
     const unsigned long long blockSize = h[1], last = h[2], headerBytes = (3 + blocks) * w;
     const size_t blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+    // VTK decodes the base64 header 4 characters at a time too: no space in it
+    if (a.base64 && base64Bytes(a.data, end, size_t(headerBytes), true).size() < headerBytes)
+        failAt(a.data, "DataArray " + quoted(a.name) + " has its compressed data header broken by a space or a character that is not base64");
     unsigned long long compressed = 0;
     for (unsigned long long b = 0; b < blocks; ++b) compressed += h[size_t(3 + b)];
     const std::string all = take(blockData, compressed);
