@@ -64,6 +64,7 @@ public:
             } else if (name == "Points" || name == "Cells" || name == "PointData" || name == "CellData" ||
                        name == "FieldData") {
                 context = name;
+                m_names.clear();
             } else if (name == "/Points" || name == "/Cells" || name == "/PointData" || name == "/CellData" ||
                        name == "/FieldData") {
                 context.clear();
@@ -277,6 +278,13 @@ private:
         if (context == "Points" || context == "PointData") tuples = (long long)m_points;
         else if (context == "CellData" || (context == "Cells" && (name == "types" || name == "offsets")))
             tuples = (long long)m_cells;
+        // VTK 9.1 keeps one point or cell data array of a name, then reads every DataArray into the
+        // arrays by position: a second of a name reads into a null one
+        if ((context == "PointData" || context == "CellData") && !name.empty()) {
+            if (std::find(m_names.begin(), m_names.end(), name) != m_names.end())
+                failAt(at, "a second DataArray named " + quoted(name) + " in " + context + ": each of its arrays needs a name of its own");
+            m_names.push_back(name);
+        }
         if (context == "Points") m_havePoints = true;
         if (context == "Cells" && name == "types") m_haveTypes = true;
         const std::string type = attribute(tag, "type");
@@ -377,6 +385,7 @@ private:
     std::string m_compressor;
     unsigned long long m_points = 0, m_cells = 0;
     size_t m_appended = 0, m_pieceAt = 0, m_fileAt = std::string::npos;
+    std::vector<std::string> m_names;  ///< the array names met in the current PointData or CellData
     bool m_havePoints = false, m_haveTypes = false;
 };
 
