@@ -9,12 +9,12 @@
 #include <vtkSmartPointer.h>
 #include <vtkZLibDataCompressor.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
-#include <algorithm>
-#include <cstdint>
 #include <string_view>
 #include <vector>
 

@@ -120,8 +120,16 @@ private:
     /// XML allows single quotes and "&#111;", which the check would not see but VTK's parser would
     /// (Name="&#111;ffsets" is VTK's offsets array).
     void plainAttributes(std::string_view tag, const std::string& name, size_t at) const {
-        if (tag.find_first_of("'&") != std::string_view::npos)
-            failAt(at, "the <" + name + "> tag has a ' or an & in it: the check reads attributes in double quotes, without character references");
+        bool quoted = false, single = false;
+        for (size_t i = 0; i < tag.size(); ++i) {
+            if (tag[i] == '"') quoted = !quoted;
+            if (quoted || tag[i] != '=') continue;
+            size_t j = i + 1;
+            while (j < tag.size() && space(tag[j])) ++j;
+            single = single || (j < tag.size() && tag[j] == '\'');
+        }
+        if (single || tag.find('&') != std::string_view::npos)
+            failAt(at, "the <" + name + "> tag has an attribute in single quotes or an & in it: the check reads attributes in double quotes, without character references");
     }
     unsigned long long count(std::string_view tag, const char* key, size_t at) const {
         const std::string v = attribute(tag, key);
