@@ -366,6 +366,26 @@ public:
     std::vector<long long> valueBytes(const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) const;
     /// vtuBlocks (VTUHeaderCheck.h).
     std::vector<VtuBlock> blocks(const VtuArrayLayout& a) const;
+    /// Where array a's data ends: the next tag for inline data, the end of the file for appended.
+    size_t dataEnd(const VtuArrayLayout& a) const {
+        const size_t close = a.format == "appended" ? std::string::npos : m_t.find('<', a.data);
+        return close == std::string::npos ? m_t.size() : close;
+    }
+    /// A compressed array's header words (blocks, block size, last block size, then each block's
+    /// compressed size; empty without blocks) and where its blocks start: in base64 the header and
+    /// the blocks are encoded apart, the header's characters first.
+    struct CompressedHeader {
+        std::vector<unsigned long long> h;
+        size_t blockData = 0;
+    };
+    CompressedHeader compressedHeader(const VtuArrayLayout& a, size_t end) const {
+        const unsigned long long blocks = words(a.data, end, a.base64, 1, a.tag)[0];
+        if (blocks == 0) return {};
+        CompressedHeader c{words(a.data, end, a.base64, 3 + size_t(blocks), a.tag), 0};
+        const unsigned long long headerBytes = (3 + blocks) * (m_header64 ? 8 : 4);
+        c.blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+        return c;
+    }
 
 private:
     /// The character of base64 text from `at` (up to `end`) that starts the 4-character group
@@ -404,11 +424,7 @@ private:
 std::vector<long long> VtuChecker::valueBytes(const VtuArrayLayout& a, const std::vector<unsigned long long>& indices) const {
     std::vector<long long> out(indices.size(), -1);
     if (a.tag == 0 || a.typeBytes <= 0) return out;
-    size_t end = m_t.size();
-    if (a.format != "appended") {
-        const size_t close = m_t.find('<', a.data);
-        if (close != std::string::npos) end = close;
-    }
+    const size_t end = dataEnd(a);
     size_t k = 0;
     if (a.format == "ascii") {  // the n-th number
         unsigned long long n = 0;
@@ -435,13 +451,11 @@ std::vector<long long> VtuChecker::valueBytes(const VtuArrayLayout& a, const std
         }
         return out;
     }
-    // compressed: blocks, block size, last block size, then each block's compressed size; the header
-    // and the blocks are encoded apart in base64 (the header's characters first)
-    const unsigned long long blocks = words(a.data, end, a.base64, 1, a.tag)[0];
-    if (blocks == 0) return out;
-    const auto h = words(a.data, end, a.base64, 3 + size_t(blocks), a.tag);
-    const unsigned long long blockSize = h[1], headerBytes = (3 + blocks) * w;
-    const size_t blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+    const CompressedHeader ch = compressedHeader(a, end);
+    if (ch.h.empty()) return out;
+    const auto& h = ch.h;
+    const unsigned long long blocks = h[0], blockSize = h[1];
+    const size_t blockData = ch.blockData;
     Base64Cursor cursor{m_t, blockData, end};
     unsigned long long b = 0, before = 0;  // the block, and the compressed bytes before it
     for (; k < out.size(); ++k) {
@@ -458,11 +472,7 @@ std::vector<long long> VtuChecker::valueBytes(const VtuArrayLayout& a, const std
 std::vector<VtuBlock> VtuChecker::blocks(const VtuArrayLayout& a) const {
     std::vector<VtuBlock> out;
     if (a.tag == 0 || a.typeBytes <= 0 || a.format == "ascii") return out;
-    size_t end = m_t.size();
-    if (a.format != "appended") {
-        const size_t close = m_t.find('<', a.data);
-        if (close != std::string::npos) end = close;
-    }
+    const size_t end = dataEnd(a);
     const size_t w = m_header64 ? 8 : 4;
     // n bytes from `at`; the header check bounded n by what the file holds
     auto take = [&](size_t at, unsigned long long n) {
@@ -477,12 +487,11 @@ std::vector<VtuBlock> VtuChecker::blocks(const VtuArrayLayout& a) const {
         out.push_back({a.data, take(a.data, w + n).substr(w), n});
         return out;
     }
-    // compressed: the header and the blocks are encoded apart (as in valueBytes)
-    const unsigned long long blocks = words(a.data, end, a.base64, 1, a.tag)[0];
-    if (blocks == 0) return out;
-    const auto h = words(a.data, end, a.base64, 3 + size_t(blocks), a.tag);
-    const unsigned long long blockSize = h[1], last = h[2], headerBytes = (3 + blocks) * w;
-    const size_t blockData = a.base64 ? size_t(a.data + (headerBytes + 2) / 3 * 4) : size_t(a.data + headerBytes);
+    const CompressedHeader ch = compressedHeader(a, end);
+    if (ch.h.empty()) return out;
+    const auto& h = ch.h;
+    const unsigned long long blocks = h[0], blockSize = h[1], last = h[2], headerBytes = (3 + blocks) * w;
+    const size_t blockData = ch.blockData;
     // VTK decodes the base64 header 4 characters at a time too: no space in it
     if (a.base64 && base64Bytes(a.data, end, size_t(headerBytes), true).size() < headerBytes)
         failAt(a.data, "DataArray " + quoted(a.name) + " has its compressed data header broken by a space or a character that is not base64");
