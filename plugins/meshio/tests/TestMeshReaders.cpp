@@ -26,6 +26,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -921,8 +922,10 @@ vtkNew<vtkUnstructuredGrid> invertedCubeGrid() {
 
 /// A .vtu of grid in one of VTK's encodings: "ascii", "binary" (inline base64), "appended-base64",
 /// "appended-raw", each uncompressed, or zlib-compressed: "binary-zlib", "appended-base64-zlib",
-/// "appended-zlib" (raw).
-std::string writeVtuAs(const std::string& name, vtkUnstructuredGrid* grid, const std::string& mode) {
+/// "appended-zlib" (raw); `more` sets anything else on the writer (compressor, header type, byte
+/// order, block size) before it writes.
+std::string writeVtuAs(const std::string& name, vtkUnstructuredGrid* grid, const std::string& mode,
+                       const std::function<void(vtkXMLUnstructuredGridWriter&)>& more = {}) {
     const std::string path = tmp().file(name);
     vtkNew<vtkXMLUnstructuredGridWriter> w;
     w->SetFileName(path.c_str());
@@ -934,6 +937,7 @@ std::string writeVtuAs(const std::string& name, vtkUnstructuredGrid* grid, const
     if (mode == "appended-raw" || mode == "appended-zlib") w->EncodeAppendedDataOff();
     if (zlib) w->SetCompressorTypeToZLib();
     else w->SetCompressorTypeToNone();
+    if (more) more(*w);  // the caller's other settings
     REQUIRE(w->Write() == 1);
     return path;
 }
@@ -987,25 +991,16 @@ TEST_CASE("The checks before VTK pass every .vtu VTK's writer makes: encodings, 
                     const std::string name = std::string(data) + "_c" + std::to_string(compressor) + "_h" + std::to_string(header64) +
                                              "_b" + std::to_string(big) + ".vtu";
                     CAPTURE(name);
-                    const std::string path = tmp().file(name);
-                    vtkNew<vtkXMLUnstructuredGridWriter> w;
-                    w->SetFileName(path.c_str());
-                    w->SetInputData(g);
-                    const std::string mode = data;
-                    if (mode == "ascii") w->SetDataModeToAscii();
-                    else if (mode == "binary") w->SetDataModeToBinary();
-                    else w->SetDataModeToAppended();
-                    if (mode == "appended-raw") w->EncodeAppendedDataOff();
-                    if (compressor == 0) w->SetCompressorTypeToNone();
-                    if (compressor == 1) w->SetCompressorTypeToZLib();
-                    if (compressor == 2) w->SetCompressorTypeToLZ4();
-                    if (compressor == 3) w->SetCompressorTypeToLZMA();
-                    if (header64) w->SetHeaderTypeToUInt64();
-                    else w->SetHeaderTypeToUInt32();
-                    if (big) w->SetByteOrderToBigEndian();
-                    else w->SetByteOrderToLittleEndian();
-                    w->SetBlockSize(64);  // several compressed blocks per array
-                    REQUIRE(w->Write() == 1);
+                    const std::string path = writeVtuAs(name, g, data, [&](vtkXMLUnstructuredGridWriter& w) {
+                        if (compressor == 1) w.SetCompressorTypeToZLib();
+                        if (compressor == 2) w.SetCompressorTypeToLZ4();
+                        if (compressor == 3) w.SetCompressorTypeToLZMA();
+                        if (header64) w.SetHeaderTypeToUInt64();
+                        else w.SetHeaderTypeToUInt32();
+                        if (big) w.SetByteOrderToBigEndian();
+                        else w.SetByteOrderToLittleEndian();
+                        w.SetBlockSize(64);  // several compressed blocks per array
+                    });
                     const MeshData m = readMesh(path);
                     CHECK(m.points.size() == 8);
                     CHECK(m.tetrahedra.size() == 5);
