@@ -23,7 +23,7 @@ const char* kHelp = R"(fascia-bench: time full explicit steps of a force field
 usage:
   fascia-bench [--forcefield HEML|TLED] [--material NAME] [--mesh FILE | --cube N]
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
-               [--viscous] [--determinism] [--reference] [--contend]
+               [--viscous] [--precision double|mixed] [--determinism] [--reference] [--contend]
   fascia-bench --suite [NAME] [--steps N] [--repeat R] [--reference] [--contend] [--cubes LIST]
   fascia-bench --overhead N [--steps N] [--repeat R]
   fascia-bench --load SCENE.xml [--repeat R]
@@ -38,6 +38,8 @@ usage:
   --threads T     OpenMP threads (default 2)
   --repeat R      timed repeats; the median is reported with min and max (default 5)
   --viscous       add a one-term ViscoelasticProny to the force field's node
+  --precision P   the force field's precision: double (default) or mixed (element data and loop
+                  in float, nodes and sums in double)
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
@@ -53,9 +55,10 @@ usage:
                   isotropic and one Prony term on 20k and 200k tetrahedra, hexahedra against
                   tetrahedra; TLED beside HEML on the 21k organ mesh), scaling (HEML and TLED from
                   20k to 200k tetrahedra), large (issue 17's table: per size, the reference
-                  kernel on 2 threads, then TLED and HEML in double on 2 threads and on 1, each
+                  kernel on 2 threads, then TLED and HEML in double and mixed on 2 threads, in
+                  double on 1, each
                   line quiet and then with --contend's competitor; 20k, 197k, 750k and 2.06M
-                  tetrahedra; the 2M line holds five copies of the mesh: several GB), contact
+                  tetrahedra; the 2M line holds seven copies of the mesh: several GB), contact
                   (HEML and TLED on the 21k organ mesh without a tool, with a capsule pressed into
                   it and moving every step, and with the same capsule as a 10k-triangle
                   SurfaceTool)
@@ -228,11 +231,14 @@ void suiteLarge(const Case& c, const SuiteOptions& o) {
             if (cube > 32) base.repeat = std::min(c.repeat, 3);
             line.push_back(referenceCase(base));
             for (int threads : {2, 1})
-                for (const char* ff : {"TLED", "HEML"}) {
-                    Case s = sideBySide(base, ff);
-                    s.threads = threads;
-                    line.push_back(s);
-                }
+                for (const char* precision : {"double", "mixed"})
+                    for (const char* ff : {"TLED", "HEML"}) {
+                        if (threads == 1 && std::string(precision) == "mixed") continue;
+                        Case s = sideBySide(base, ff);
+                        s.threads = threads;
+                        s.precision = precision;
+                        line.push_back(s);
+                    }
             runCases(line);
         }
     }
@@ -314,6 +320,7 @@ int main(int argc, char** argv) {
         else if (a == "--threads") c.threads = parseInt(next(), "--threads");
         else if (a == "--repeat") c.repeat = parseInt(next(), "--repeat");
         else if (a == "--viscous") c.viscous = true;
+        else if (a == "--precision") c.precision = str("--precision");
         else if (a == "--determinism") c.determinism = true;
         else if (a == "--contend") c.contend = true;
         else if (a == "--scene") printScene = true;
@@ -332,6 +339,10 @@ int main(int argc, char** argv) {
     }
     if (c.forcefield != "HEML" && c.forcefield != "TLED") {
         std::cerr << "fascia-bench: --forcefield is HEML or TLED\n";
+        return 1;
+    }
+    if (c.precision != "double" && c.precision != "mixed") {
+        std::cerr << "fascia-bench: --precision is double or mixed\n";
         return 1;
     }
     try {

@@ -7,6 +7,7 @@
 #include "fascia/elements/BlockBuffers.h"
 #include "fascia/viscoelastic/HistoryClock.h"
 
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -51,16 +52,24 @@ struct ElementSet {
     std::vector<double> length; ///< characteristic length L_e (m)
     std::vector<double> hgC;    ///< AoS hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, 3q + i (emptied by finish())
     std::vector<double> hgK;    ///< hexahedra: hourglass stiffness K (N/m)
-    simd::DVec pack;            ///< the rows above, batch by batch
-    int rows = 0;               ///< rows per batch in pack
+    simd::DVec pack;            ///< the rows above, batch by batch (precision "double")
+    /// precision "mixed": the same rows in float, and one more, the rest volume (row volRow), so that
+    /// the kernel reads 4 bytes a number and no double array of the elements but the connectivity
+    std::vector<float, simd::AlignedAllocator<float>> packF;
+    int rows = 0;               ///< rows per batch in pack (or packF)
+    int volRow = -1;            ///< packF: the row of the rest volume (-1: pack in double)
     size_t batchOffset = 0;     ///< Block::batchBase of the first batch of this kind
     size_t size() const { return vol.size(); }
-    /// the pack of the batch starting at element e0 of block b
-    const double* batchData(const Block& b, size_t e0) const {
-        return pack.data() + (b.batchBase - batchOffset + (e0 - b.begin) / kBatch) * static_cast<size_t>(rows) * kBatch;
+    /// the pack of the batch starting at element e0 of block b (T: double, or float for packF)
+    template <class T>
+    const T* batchData(const Block& b, size_t e0) const {
+        const size_t at = (b.batchBase - batchOffset + (e0 - b.begin) / kBatch) * static_cast<size_t>(rows) * kBatch;
+        if constexpr (std::is_same_v<T, float>) return packF.data() + at;
+        else return pack.data() + at;
     }
-    /// packs the AoS arrays; batches: first element and size of every batch, in slot order
-    void finish(const std::vector<std::pair<size_t, size_t>>& batches);
+    /// packs the AoS arrays (in float, with the volume row, when mixed); batches: first element and
+    /// size of every batch, in slot order
+    void finish(const std::vector<std::pair<size_t, size_t>>& batches, bool mixed);
 };
 
 /// One Prony series acting on the isochoric and/or volumetric part of S.
@@ -109,6 +118,9 @@ struct TLEDForceField::Impl {
         /// (materials/RelaxationSplit.h); 0 when no series relaxes one part alone
         double restShift = 0;
     };
+    /// precision="mixed": the element data and the element loop in float, u, the forces and the
+    /// block sums in double (TLEDKernel.h)
+    bool mixed = false;
     bool fibresPerElement = false;  ///< a fibre array gives the directions (ElementSet::a0, b0), else Group::a0, b0
     ElementSet<4> tet;
     ElementSet<8> hex;
@@ -136,7 +148,11 @@ struct TLEDForceField::Impl {
     }
 };
 
-/// The kernel of a group (TLEDKernel.cpp): the inlined loop of its built-in law, else the generic one.
-void chooseKernel(TLEDForceField::Impl::Group& g);
+/// The kernel of a group (TLEDKernel.cpp): the inlined loop of its built-in law, else the generic
+/// one, in double or (mixed) in float.
+void chooseKernel(TLEDForceField::Impl::Group& g, bool mixed);
+/// The same for one scalar type (TLEDKernelDouble.cpp, TLEDKernelFloat.cpp).
+template <class T>
+TLEDForceField::Impl::KernelFn kernelFor(const TLEDForceField::Impl::Group& g, const void*& law);
 
 } // namespace fascia::tled

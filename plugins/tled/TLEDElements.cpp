@@ -20,24 +20,42 @@ namespace fascia::tled {
 using materials::BaseMaterial;
 using Impl = TLEDForceField::Impl;
 
+namespace {
+/// Writes the rows of ElementSet::pack (or packF, with the volume row) into P, batch by batch.
+template <int NN, class T>
+void packRows(const ElementSet<NN>& es, const std::vector<std::pair<size_t, size_t>>& batches, bool fibres, T* pack) {
+    using ES = ElementSet<NN>;
+    for (size_t m = 0; m < batches.size(); ++m) {
+        T* P = pack + m * static_cast<size_t>(es.rows) * kBatch;
+        for (size_t k = 0; k < batches[m].second; ++k) {
+            const size_t e = batches[m].first + k;
+            for (int r = 0; r < ES::kDnRows; ++r)
+                P[r * kBatch + k] = static_cast<T>(es.dN[e * 3 * NN + (NN == 4 ? 3 : 0) + static_cast<size_t>(r)]);
+            if constexpr (NN == 8)
+                for (int r = 0; r < 12; ++r) P[(ES::kHgRow + r) * kBatch + k] = static_cast<T>(es.hgC[e * 12 + static_cast<size_t>(r)]);
+            for (int c = 0; c < 3 && fibres; ++c) {
+                P[(ES::kFibreRow + c) * kBatch + k] = static_cast<T>(es.a0.empty() ? (c == 0 ? 1.0 : 0.0) : es.a0[3 * e + static_cast<size_t>(c)]);
+                P[(ES::kFibreRow + 3 + c) * kBatch + k] = static_cast<T>(es.b0.empty() ? (c == 1 ? 1.0 : 0.0) : es.b0[3 * e + static_cast<size_t>(c)]);
+            }
+            if (es.volRow >= 0) P[es.volRow * kBatch + k] = static_cast<T>(es.vol[e]);
+        }
+    }
+}
+} // namespace
+
 template <int NN>
-void ElementSet<NN>::finish(const std::vector<std::pair<size_t, size_t>>& batches) {
+void ElementSet<NN>::finish(const std::vector<std::pair<size_t, size_t>>& batches, bool mixed) {
     if (size() == 0) return;
     const bool fibres = !a0.empty() || !b0.empty();
     rows = kFibreRow + (fibres ? 6 : 0);
-    pack.assign(batches.size() * static_cast<size_t>(rows) * kBatch, 0.0);
-    for (size_t m = 0; m < batches.size(); ++m) {
-        double* P = pack.data() + m * static_cast<size_t>(rows) * kBatch;
-        for (size_t k = 0; k < batches[m].second; ++k) {
-            const size_t e = batches[m].first + k;
-            for (int r = 0; r < kDnRows; ++r) P[r * kBatch + k] = dN[e * 3 * NN + (NN == 4 ? 3 : 0) + static_cast<size_t>(r)];
-            if constexpr (NN == 8)
-                for (int r = 0; r < 12; ++r) P[(kHgRow + r) * kBatch + k] = hgC[e * 12 + static_cast<size_t>(r)];
-            for (int c = 0; c < 3 && fibres; ++c) {
-                P[(kFibreRow + c) * kBatch + k] = a0.empty() ? (c == 0 ? 1.0 : 0.0) : a0[3 * e + static_cast<size_t>(c)];
-                P[(kFibreRow + 3 + c) * kBatch + k] = b0.empty() ? (c == 1 ? 1.0 : 0.0) : b0[3 * e + static_cast<size_t>(c)];
-            }
-        }
+    volRow = mixed ? rows++ : -1;
+    const size_t n = batches.size() * static_cast<size_t>(rows) * kBatch;
+    if (mixed) {
+        packF.assign(n, 0.0f);
+        packRows(*this, batches, fibres, packF.data());
+    } else {
+        pack.assign(n, 0.0);
+        packRows(*this, batches, fibres, pack.data());
     }
     dN = {};
     hgC = {};
@@ -272,7 +290,7 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
         g.material = m;
         g.uses = m->uses();
         g.pModulus = m->bulkModulus() + 4.0 / 3.0 * m->shearModulus();
-        chooseKernel(g);
+        chooseKernel(g, im.mixed);
         im.groups.push_back(g);
         su.perGroup.emplace_back();
         return im.groups.size() - 1;
@@ -318,8 +336,8 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
         if (batchStarts[b.kind].empty()) (b.kind == 0 ? im.tet.batchOffset : im.hex.batchOffset) = b.batchBase;
         for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) batchStarts[b.kind].emplace_back(e0, std::min<size_t>(kBatch, b.end - e0));
     }
-    im.tet.finish(batchStarts[0]);
-    im.hex.finish(batchStarts[1]);
+    im.tet.finish(batchStarts[0], im.mixed);
+    im.hex.finish(batchStarts[1], im.mixed);
 }
 
 } // namespace fascia::tled

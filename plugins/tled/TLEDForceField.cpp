@@ -86,6 +86,7 @@ void TLEDForceField::init() {
         fail("elements use node " + std::to_string(maxNode) + " but the state '" + state->name() + "' has " +
              std::to_string(X.size()) + " nodes");
     im.nodeCount = static_cast<size_t>(maxNode + 1);
+    im.mixed = m_precision.get() == "mixed";
 
     precompute(mesh, X);
 

@@ -6,6 +6,12 @@
 ///   -> the law (W and dW/dI for the whole batch) -> stress (P directly; or S, relaxed by the
 ///   Prony series, then P = F S) -> energy -> nodal forces f_a = -V P dN_a/dX -> scatter.
 /// The per-element formulas are the element layer's (fascia/elements/Tensor3.h, BatchView.h).
+///
+/// Every stage is templated on the scalar type T of the element data and the arithmetic: double
+/// (precision "double"), or float (precision "mixed"). u, the block buffers and the energy sum stay
+/// double in both: in float the gather forms u_a - u_0 in double before rounding (F needs only the
+/// differences, and the hourglass modes too, since each h_q sums to zero), so a rigid translation of
+/// the mesh costs no digits; the element forces are widened to double before the scatter.
 #include "TLEDData.h"
 
 #include "fascia/elements/BatchView.h"
@@ -21,43 +27,70 @@ using materials::BaseMaterial;
 using Impl = TLEDForceField::Impl;
 
 /// Per-batch scratch of the element loop, as structure of arrays (index k = element in the batch).
-template <int NN>
+template <int NN, class T = double>
 struct Batch {
-    NodalBatch<NN, kBatch> u;              ///< nodal displacements x - X
-    MatBatch<kBatch> F;                    ///< deformation gradient
-    alignas(64) double I1[kBatch], I2[kBatch], J[kBatch], I4[kBatch], I6[kBatch];
-    ResponseBatch<kBatch> r;               ///< the law's response
-    MatBatch<kBatch> P;                    ///< first Piola-Kirchhoff stress
-    SymBatch<kBatch> Siso, Svol, S;        ///< viscous path: S and its parts
+    static constexpr bool kMixed = std::is_same_v<T, float>;
+    static constexpr int kWide = kMixed ? NN : 1;  ///< nodes of the double copies below (1: unused)
+    NodalBatch<NN, kBatch, T> u;           ///< nodal displacements x - X (mixed: u_a - u_0)
+    NodalBatch<kWide, kBatch> uWide, fWide;  ///< mixed: u as gathered and the forces to scatter, in double
+    MatBatch<kBatch, T> F;                 ///< deformation gradient
+    alignas(64) T I1[kBatch], I2[kBatch], J[kBatch], I4[kBatch], I6[kBatch];
+    ResponseBatch<kBatch, T> r;            ///< the law's response
+    MatBatch<kBatch, T> P;                 ///< first Piola-Kirchhoff stress
+    SymBatch<kBatch, T> Siso, Svol, S;     ///< viscous path: S and its parts
     alignas(64) double Ytmp[kBatch];       ///< viscous path: a state row on its way to a streaming store
     alignas(64) double Y6[6][kBatch];      ///< the same for the six rows of a one-term series
-    NodalBatch<NN, kBatch> f;              ///< element nodal forces
-    alignas(64) double Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
+    NodalBatch<NN, kBatch, T> f;           ///< element nodal forces
+    alignas(64) T Kh[NN == 8 ? 12 : 1][kBatch];  ///< hexahedra: hourglass displacements h_q, rows 3q + j
 };
 
 /// Fibre directions of a batch: rows a0 x y z, b0 x y z (per element, or the group's copied across).
+template <class T>
 struct Fibres {
-    NodeRows<kBatch> rows;
-    FASCIA_INLINE Vec33<double> a(int k) const { return rows.vec(0, k); }
-    FASCIA_INLINE Vec33<double> b(int k) const { return rows.vec(1, k); }
+    NodeRows<kBatch, T> rows;
+    FASCIA_INLINE Vec33<T> a(int k) const { return rows.vec(0, k); }
+    FASCIA_INLINE Vec33<T> b(int k) const { return rows.vec(1, k); }
 };
 
 /// Gathers u of the batch's nodes (precomputed per node, padded to 4; forming F from displacements
-/// keeps it accurate).
+/// keeps it accurate) into ub.
 template <int NN>
-FASCIA_INLINE void gather(const ElementSet<NN>& es, size_t e0, int n, const double* __restrict u4, Batch<NN>& s) {
+FASCIA_INLINE void gatherInto(const ElementSet<NN>& es, size_t e0, int n, const double* __restrict u4, NodalBatch<NN, kBatch>& ub) {
+    auto& s = ub;
     int kq = 0;
     for (; kq + 4 <= n; kq += 4) {
         const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
-        for (int a = 0; a < NN; ++a) simd::gather4(u4, nd + a, NN, &s.u.v[a][0][kq], &s.u.v[a][1][kq], &s.u.v[a][2][kq]);
+        for (int a = 0; a < NN; ++a) simd::gather4(u4, nd + a, NN, &s.v[a][0][kq], &s.v[a][1][kq], &s.v[a][2][kq]);
     }
     for (int k = kq; k < n; ++k) {
         const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
         for (int a = 0; a < NN; ++a) {
             const double* up = u4 + 4 * static_cast<size_t>(nd[a]);
-            s.u.v[a][0][k] = up[0];
-            s.u.v[a][1][k] = up[1];
-            s.u.v[a][2][k] = up[2];
+            s.v[a][0][k] = up[0];
+            s.v[a][1][k] = up[1];
+            s.v[a][2][k] = up[2];
+        }
+    }
+}
+
+/// u of the batch: gathered straight into s.u in double; in float gathered in double, then
+/// u_a - u_0 rounded to float (u_0 = 0: F and the hourglass modes see differences only).
+template <int NN, class T>
+FASCIA_INLINE void gather(const ElementSet<NN>& es, size_t e0, int n, const double* __restrict u4, Batch<NN, T>& s) {
+    if constexpr (!Batch<NN, T>::kMixed) {
+        gatherInto(es, e0, n, u4, s.u);
+    } else {
+        gatherInto(es, e0, n, u4, s.uWide);
+        for (int i = 0; i < 3; ++i) {
+            const double* __restrict u0 = s.uWide.v[0][i];
+#pragma omp simd
+            for (int k = 0; k < kBatch; ++k) s.u.v[0][i][k] = 0.0f;
+            for (int a = 1; a < NN; ++a) {
+                const double* __restrict ua = s.uWide.v[a][i];
+                T* __restrict out = s.u.v[a][i];
+#pragma omp simd
+                for (int k = 0; k < n; ++k) out[k] = static_cast<T>(ua[k] - u0[k]);
+            }
         }
     }
 }
@@ -66,13 +99,14 @@ FASCIA_INLINE void gather(const ElementSet<NN>& es, size_t e0, int n, const doub
 /// gamma_qa = h_qa - c_q . dN_a/dX, c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q;
 /// energy K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are sums and
 /// differences of node pairs. Component j, g = row j of F - I.
-FASCIA_INLINE void hourglassModes(Batch<8>& s, const NodeRows<kBatch>& c, int k, int j, double g0, double g1, double g2) {
+template <class T>
+FASCIA_INLINE void hourglassModes(Batch<8, T>& s, const NodeRows<kBatch, T>& c, int k, int j, T g0, T g1, T g2) {
     const auto& u = s.u.v;
-    const double d01 = u[0][j][k] - u[1][j][k], d23 = u[2][j][k] - u[3][j][k], d45 = u[4][j][k] - u[5][j][k],
+    const T d01 = u[0][j][k] - u[1][j][k], d23 = u[2][j][k] - u[3][j][k], d45 = u[4][j][k] - u[5][j][k],
                  d67 = u[6][j][k] - u[7][j][k];
-    const double a01 = u[0][j][k] + u[1][j][k], a23 = u[2][j][k] + u[3][j][k], a45 = u[4][j][k] + u[5][j][k],
+    const T a01 = u[0][j][k] + u[1][j][k], a23 = u[2][j][k] + u[3][j][k], a45 = u[4][j][k] + u[5][j][k],
                  a67 = u[6][j][k] + u[7][j][k];
-    const double X = d01 + d23, Y = d45 + d67;
+    const T X = d01 + d23, Y = d45 + d67;
     s.Kh[j][k] = (X + Y) - (g0 * c.at(0, 0, k) + g1 * c.at(0, 1, k) + g2 * c.at(0, 2, k));                // ( 1,-1, 1,-1, 1,-1, 1,-1)
     s.Kh[3 + j][k] = (a01 - a23) + (a67 - a45) - (g0 * c.at(1, 0, k) + g1 * c.at(1, 1, k) + g2 * c.at(1, 2, k));  // ( 1, 1,-1,-1,-1,-1, 1, 1)
     s.Kh[6 + j][k] = (d01 - d23) + (d67 - d45) - (g0 * c.at(2, 0, k) + g1 * c.at(2, 1, k) + g2 * c.at(2, 2, k));  // ( 1,-1,-1, 1,-1, 1, 1,-1)
@@ -80,27 +114,27 @@ FASCIA_INLINE void hourglassModes(Batch<8>& s, const NodeRows<kBatch>& c, int k,
 }
 
 /// F = I + sum_a u_a (x) dN_a/dX and the invariants of C = F^T F the law uses (U: BaseMaterial::Uses).
-template <int NN, unsigned U>
-FASCIA_INLINE void gradientAndInvariants(Batch<NN>& s, int n, const double* __restrict G, const Fibres& fib) {
-    const NodeRows<kBatch> dN{G};
+template <int NN, unsigned U, class T>
+FASCIA_INLINE void gradientAndInvariants(Batch<NN, T>& s, int n, const T* __restrict G, const Fibres<T>& fib) {
+    const NodeRows<kBatch, T> dN{G};
 #pragma omp simd
     for (int k = 0; k < n; ++k) {
-        Mat33<double> F;
+        Mat33<T> F;
         if constexpr (NN == 4) F = deformationGradientTet(s.u, dN, k);
         else F = deformationGradient(s.u, dN, k);
         s.F.set(k, F);
         if constexpr (NN == 8) {
             // computed here, where u and F are at hand (a pass of its own reloaded them)
-            const NodeRows<kBatch> c{G + ElementSet<NN>::kHgRow * kBatch};
+            const NodeRows<kBatch, T> c{G + ElementSet<NN>::kHgRow * kBatch};
             hourglassModes(s, c, k, 0, F.xx - 1, F.xy, F.xz);
             hourglassModes(s, c, k, 1, F.yx, F.yy - 1, F.yz);
             hourglassModes(s, c, k, 2, F.zx, F.zy, F.zz - 1);
         }
-        const Invariants3<double> in = invariants<(U & BaseMaterial::UsesI2) != 0>(F);
+        const Invariants3<T> in = invariants<(U & BaseMaterial::UsesI2) != 0>(F);
         s.I1[k] = in.I1;
         s.J[k] = in.J;
         s.I2[k] = in.I2;
-        double I4 = 1, I6 = 1;
+        T I4 = 1, I6 = 1;
         if constexpr ((U & BaseMaterial::UsesI4) != 0) I4 = fibreInvariant(F, fib.a(k));
         if constexpr ((U & BaseMaterial::UsesI6) != 0) I6 = fibreInvariant(F, fib.b(k));
         s.I4[k] = I4;
@@ -109,8 +143,8 @@ FASCIA_INLINE void gradientAndInvariants(Batch<NN>& s, int n, const double* __re
 }
 
 /// Without viscosity: P from the law's response directly (Tensor3.h firstPiola).
-template <int NN, unsigned U>
-FASCIA_INLINE void elasticStress(Batch<NN>& s, int n, const Fibres& fib) {
+template <int NN, unsigned U, class T>
+FASCIA_INLINE void elasticStress(Batch<NN, T>& s, int n, const Fibres<T>& fib) {
     constexpr bool i2 = (U & BaseMaterial::UsesI2) != 0, i4 = (U & BaseMaterial::UsesI4) != 0, i6 = (U & BaseMaterial::UsesI6) != 0;
 #pragma omp simd
     for (int k = 0; k < n; ++k)
@@ -120,52 +154,54 @@ FASCIA_INLINE void elasticStress(Batch<NN>& s, int n, const Fibres& fib) {
 /// Moves s ln J from the isochoric to the volumetric part of the response (dJiso -= s/J, dJvol +=
 /// s/J, their sum unchanged), so that each part a series relaxes is stress-free at rest
 /// (materials/RelaxationSplit.h). max(J0, J) keeps unused lanes finite.
-template <int NN>
-FASCIA_INLINE void restSplit(Batch<NN>& s, int n, double shift, double J0) {
+template <int NN, class T>
+FASCIA_INLINE void restSplit(Batch<NN, T>& s, int n, double shift, double J0) {
+    const T sh = static_cast<T>(shift), j0 = static_cast<T>(J0);
 #pragma omp simd
     for (int k = 0; k < n; ++k) {
-        const double q = shift / std::max(J0, s.J[k]);
+        const T q = sh / std::max(j0, s.J[k]);
         s.r.dJi[k] -= q;
         s.r.dJv[k] += q;
     }
 }
 
 /// S of TLED eq. (10) in its isochoric and volumetric parts (Tensor3.h secondPiola).
-template <unsigned U, int NN>
-FASCIA_INLINE void splitStress(const Batch<NN>& s, int k, const Fibres& fib, Sym33<double>& Si, Sym33<double>& Sv) {
+template <unsigned U, int NN, class T>
+FASCIA_INLINE void splitStress(const Batch<NN, T>& s, int k, const Fibres<T>& fib, Sym33<T>& Si, Sym33<T>& Sv) {
     constexpr bool i2 = (U & BaseMaterial::UsesI2) != 0, i4 = (U & BaseMaterial::UsesI4) != 0, i6 = (U & BaseMaterial::UsesI6) != 0;
     secondPiola<i2, i4, i6>(s.F.get(k), s.I1[k], s.J[k], s.r.coefficients(k), fib.a(k), fib.b(k), Si, Sv);
 }
 
 /// One series of one term (the TLED paper's models): S, Y = A Phi + B Y^(n-1), S - Y and P = F S in
 /// one pass (TLED eq. (24), (30)).
-template <int NN, unsigned U>
-FASCIA_INLINE void viscousStressOneTerm(Batch<NN>& s, int n, const Fibres& fib, const ViscoSet& vs, const double* __restrict Yh,
+/// (In float, S and P in float, the states and the relaxation in double.)
+template <int NN, unsigned U, class T>
+FASCIA_INLINE void viscousStressOneTerm(Batch<NN, T>& s, int n, const Fibres<T>& fib, const ViscoSet& vs, const double* __restrict Yh,
                                         double* __restrict Yn) {
     const double A1 = vs.A[0], B1 = vs.B[0];
     const double wIso = vs.iso ? 1.0 : 0.0, wVol = vs.vol ? 1.0 : 0.0;  // (weights 0 or 1: no branch in the loop)
 #pragma omp simd
     for (int k = 0; k < n; ++k) {
-        Sym33<double> Si, Sv;
+        Sym33<T> Si, Sv;
         splitStress<U>(s, k, fib, Si, Sv);
-        const auto relax = [&](double a, double b, int i) {
+        const auto relax = [&](T a, T b, int i) {
             const double Y = A1 * (wIso * a + wVol * b) + B1 * Yh[i * kBatch + k];
             Yn[i * kBatch + k] = Y;
-            return (a + b) - Y;
+            return static_cast<T>((a + b) - Y);
         };
-        const Sym33<double> T{relax(Si.xx, Sv.xx, 0), relax(Si.yy, Sv.yy, 1), relax(Si.zz, Sv.zz, 2),
+        const Sym33<T> Sr{relax(Si.xx, Sv.xx, 0), relax(Si.yy, Sv.yy, 1), relax(Si.zz, Sv.zz, 2),
                               relax(Si.xy, Sv.xy, 3), relax(Si.yz, Sv.yz, 4), relax(Si.xz, Sv.xz, 5)};
-        s.P.set(k, firstPiolaOf(s.F.get(k), T));
+        s.P.set(k, firstPiolaOf(s.F.get(k), Sr));
     }
 }
 
 /// Any number of series and terms: S and its parts, then one short loop per series, term and
 /// component: S^n = Phi^n - sum_i Y_i^n, Y_i^n = A_i Phi^n + B_i Y_i^(n-1) (TLED eq. (24), (30)), then P = F S.
-template <int NN, unsigned U>
-FASCIA_INLINE void viscousStress(Batch<NN>& s, int n, const Fibres& fib, const Impl& im, const KernelIO& io, size_t batch) {
+template <int NN, unsigned U, class T>
+FASCIA_INLINE void viscousStress(Batch<NN, T>& s, int n, const Fibres<T>& fib, const Impl& im, const KernelIO& io, size_t batch) {
 #pragma omp simd
     for (int k = 0; k < n; ++k) {
-        Sym33<double> Si, Sv;
+        Sym33<T> Si, Sv;
         splitStress<U>(s, k, fib, Si, Sv);
         s.Siso.set(k, Si);
         s.Svol.set(k, Sv);
@@ -184,22 +220,22 @@ FASCIA_INLINE void viscousStress(Batch<NN>& s, int n, const Fibres& fib, const I
                 const size_t row = slot + (6 * static_cast<size_t>(t) + static_cast<size_t>(i)) * kBatch;
                 const double* __restrict Yh = io.Yhist[v] + row;
                 double* __restrict Yn = stream ? s.Ytmp : io.Ynew[v] + row;
-                const double* __restrict Ri = s.Siso.s[i];
-                const double* __restrict Rv = s.Svol.s[i];
-                double* __restrict Si = s.S.s[i];
+                const T* __restrict Ri = s.Siso.s[i];
+                const T* __restrict Rv = s.Svol.s[i];
+                T* __restrict Si = s.S.s[i];
                 if (vs.iso && vs.vol) {
 #pragma omp simd
                     for (int k = 0; k < n; ++k) {
                         const double Y = A * (Ri[k] + Rv[k]) + Bc * Yh[k];
-                        Si[k] -= Y;
+                        Si[k] = static_cast<T>(Si[k] - Y);
                         Yn[k] = Y;
                     }
                 } else {
-                    const double* __restrict R = vs.iso ? Ri : Rv;  // one part only
+                    const T* __restrict R = vs.iso ? Ri : Rv;  // one part only
 #pragma omp simd
                     for (int k = 0; k < n; ++k) {
                         const double Y = A * R[k] + Bc * Yh[k];
-                        Si[k] -= Y;
+                        Si[k] = static_cast<T>(Si[k] - Y);
                         Yn[k] = Y;
                     }
                 }
@@ -213,11 +249,11 @@ FASCIA_INLINE void viscousStress(Batch<NN>& s, int n, const Fibres& fib, const I
 
 /// Stress output (S and F per cell, scalar): S with the viscous history read but not advanced
 /// unless io.Ynew is given (with the coefficients io.A, io.B where given), then P = F S.
-template <int NN, unsigned U>
-FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Impl& im, const ElementSet<NN>& es,
+template <int NN, unsigned U, class T>
+FASCIA_INLINE void stressOutput(Batch<NN, T>& s, int n, const Fibres<T>& fib, const Impl& im, const ElementSet<NN>& es,
                                 const KernelIO& io, size_t e0, size_t batch, size_t cellOff) {
     for (int k = 0; k < n; ++k) {
-        Sym33<double> Si, Sv;
+        Sym33<T> Si, Sv;
         splitStress<U>(s, k, fib, Si, Sv);
         double S[6] = {Si.xx + Sv.xx, Si.yy + Sv.yy, Si.zz + Sv.zz, Si.xy + Sv.xy, Si.yz + Sv.yz, Si.xz + Sv.xz};
         const double siso[6] = {Si.xx, Si.yy, Si.zz, Si.xy, Si.yz, Si.xz}, svol[6] = {Sv.xx, Sv.yy, Sv.zz, Sv.xy, Sv.yz, Sv.xz};
@@ -241,8 +277,9 @@ FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Im
                 }
             }
         }
-        const Mat33<double> F = s.F.get(k);
-        s.P.set(k, firstPiolaOf(F, Sym33<double>{S[0], S[1], S[2], S[3], S[4], S[5]}));
+        const Mat33<T> F = s.F.get(k);
+        const auto t = [&](int i) { return static_cast<T>(S[i]); };
+        s.P.set(k, firstPiolaOf(F, Sym33<T>{t(0), t(1), t(2), t(3), t(4), t(5)}));
         const size_t cell = cellOff + static_cast<size_t>(es.orig[e0 + static_cast<size_t>(k)]);
         if (io.S)
             for (int i = 0; i < 6; ++i) io.S[6 * cell + static_cast<size_t>(i)] = S[i];
@@ -253,13 +290,13 @@ FASCIA_INLINE void stressOutput(Batch<NN>& s, int n, const Fibres& fib, const Im
 
 /// energy += the elastic energy of the batch, hourglass energy K/2 sum_q |h_q|^2 included (element
 /// by element into the block's running sum).
-template <int NN>
-FASCIA_INLINE void addEnergy(const Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, double& energy) {
+template <int NN, class T>
+FASCIA_INLINE void addEnergy(const Batch<NN, T>& s, int n, const ElementSet<NN>& es, size_t e0, double& energy) {
     for (int k = 0; k < n; ++k) energy += es.vol[e0 + static_cast<size_t>(k)] * s.r.W[k];
     if constexpr (NN == 8) {
         const double* __restrict K = es.hgK.data() + e0;
         for (int k = 0; k < n; ++k) {
-            double w = 0;
+            T w = 0;
             for (int r = 0; r < 12; ++r) w += s.Kh[r][k] * s.Kh[r][k];
             energy += 0.5 * K[k] * w;
         }
@@ -269,34 +306,46 @@ FASCIA_INLINE void addEnergy(const Batch<NN>& s, int n, const ElementSet<NN>& es
 /// f_a = -V P dN_a/dX (TLED eq. (1)-(3)); hexahedra with hourglass control:
 /// -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q, so
 /// f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q.
-template <int NN>
-FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, const double* __restrict G) {
-    const NodeRows<kBatch> dN{G};
+/// (In float the volume comes from the pack's volume row.)
+template <int NN, class T>
+FASCIA_INLINE void nodalForces(Batch<NN, T>& s, int n, const ElementSet<NN>& es, size_t e0, const T* __restrict G) {
+    const NodeRows<kBatch, T> dN{G};
+    const T* __restrict vrow = Batch<NN, T>::kMixed ? G + es.volRow * kBatch : nullptr;
 #pragma omp simd
     for (int k = 0; k < n; ++k) {
         const size_t e = e0 + static_cast<size_t>(k);
-        const double V = es.vol[e];
-        double P0 = V * s.P.m[0][k], P1 = V * s.P.m[1][k], P2 = V * s.P.m[2][k], P3 = V * s.P.m[3][k], P4 = V * s.P.m[4][k],
+        T V;
+        if constexpr (Batch<NN, T>::kMixed) V = vrow[k];
+        else V = es.vol[e];
+        T P0 = V * s.P.m[0][k], P1 = V * s.P.m[1][k], P2 = V * s.P.m[2][k], P3 = V * s.P.m[3][k], P4 = V * s.P.m[4][k],
                P5 = V * s.P.m[5][k], P6 = V * s.P.m[6][k], P7 = V * s.P.m[7][k], P8 = V * s.P.m[8][k];
-        Mat33<double> P{P0, P1, P2, P3, P4, P5, P6, P7, P8};
+        Mat33<T> P{P0, P1, P2, P3, P4, P5, P6, P7, P8};
         if constexpr (NN == 4) {
-            double s0 = 0, s1 = 0, s2 = 0;
+            // (components as scalars: a Vec33 here is privatised by omp simd into an array of
+            // structs, which the float loop cannot store 16 lanes at a time)
+            T s0 = 0, s1 = 0, s2 = 0;
             for (int a = 1; a < 4; ++a) {
-                const Vec33<double> f = nodalForce(P, dN.at(a - 1, 0, k), dN.at(a - 1, 1, k), dN.at(a - 1, 2, k));
-                s.f.set(a, k, f);
-                s0 += f.x;
-                s1 += f.y;
-                s2 += f.z;
+                const T g0 = dN.at(a - 1, 0, k), g1 = dN.at(a - 1, 1, k), g2 = dN.at(a - 1, 2, k);
+                const T fx = -(P.xx * g0 + P.xy * g1 + P.xz * g2), fy = -(P.yx * g0 + P.yy * g1 + P.yz * g2),
+                        fz = -(P.zx * g0 + P.zy * g1 + P.zz * g2);  // nodalForce (BatchView.h)
+                s.f.v[a][0][k] = fx;
+                s.f.v[a][1][k] = fy;
+                s.f.v[a][2][k] = fz;
+                s0 += fx;
+                s1 += fy;
+                s2 += fz;
             }
-            s.f.set(0, k, {-s0, -s1, -s2});
+            s.f.v[0][0][k] = -s0;
+            s.f.v[0][1][k] = -s1;
+            s.f.v[0][2][k] = -s2;
         } else {
-            const NodeRows<kBatch> hgC{G + ElementSet<NN>::kHgRow * kBatch};
-            const double K = es.hgK[e];
-            double r[3][8];  // K sum_q h_qa h_q per component, the pair sums of hourglassModes reversed
+            const NodeRows<kBatch, T> hgC{G + ElementSet<NN>::kHgRow * kBatch};
+            const T K = static_cast<T>(es.hgK[e]);
+            T r[3][8];  // K sum_q h_qa h_q per component, the pair sums of hourglassModes reversed
 #pragma GCC unroll 3
             for (int j = 0; j < 3; ++j) {
-                const double g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
-                const double p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
+                const T g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
+                const T p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
                 r[j][0] = p + sm;
                 r[j][1] = sp - p;
                 r[j][2] = m - sp;
@@ -308,8 +357,8 @@ FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, si
             }
 #pragma GCC unroll 4
             for (int q = 0; q < 4; ++q) {
-                const double c0 = hgC.at(q, 0, k), c1 = hgC.at(q, 1, k), c2 = hgC.at(q, 2, k);
-                const double k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
+                const T c0 = hgC.at(q, 0, k), c1 = hgC.at(q, 1, k), c2 = hgC.at(q, 2, k);
+                const T k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
                 P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
                 P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
                 P6 -= k2 * c0; P7 -= k2 * c1; P8 -= k2 * c2;
@@ -317,7 +366,7 @@ FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, si
             // (fully unrolled: a loop left over the nodes turns the dN loads into emulated gathers)
 #pragma GCC unroll 8
             for (int a = 0; a < NN; ++a) {
-                const double g0 = dN.at(a, 0, k), g1 = dN.at(a, 1, k), g2 = dN.at(a, 2, k);
+                const T g0 = dN.at(a, 0, k), g1 = dN.at(a, 1, k), g2 = dN.at(a, 2, k);
                 s.f.v[a][0][k] = -(P0 * g0 + P1 * g1 + P2 * g2) - r[0][a];
                 s.f.v[a][1][k] = -(P3 * g0 + P4 * g1 + P5 * g2) - r[1][a];
                 s.f.v[a][2][k] = -(P6 * g0 + P7 * g1 + P8 * g2) - r[2][a];
@@ -329,32 +378,50 @@ FASCIA_INLINE void nodalForces(Batch<NN>& s, int n, const ElementSet<NN>& es, si
 /// Adds the batch's nodal forces into the block's node buffer (a fixed order: batch quads, then
 /// nodes, then elements).
 template <int NN>
-FASCIA_INLINE void scatter(const Batch<NN>& s, int n, const ElementSet<NN>& es, size_t e0, double* __restrict buf, int lo) {
+FASCIA_INLINE void scatterFrom(const NodalBatch<NN, kBatch>& fb, int n, const ElementSet<NN>& es, size_t e0, double* __restrict buf, int lo) {
+    const auto& s = fb;
     int kq = 0;
     for (; kq + 4 <= n; kq += 4) {
         const int* nd = &es.nodes[(e0 + static_cast<size_t>(kq)) * NN];
-        for (int a = 0; a < NN; ++a) simd::scatterAdd4(buf, nd + a, NN, &s.f.v[a][0][kq], &s.f.v[a][1][kq], &s.f.v[a][2][kq], lo);
+        for (int a = 0; a < NN; ++a) simd::scatterAdd4(buf, nd + a, NN, &s.v[a][0][kq], &s.v[a][1][kq], &s.v[a][2][kq], lo);
     }
     for (int k = kq; k < n; ++k) {
         const int* nd = &es.nodes[(e0 + static_cast<size_t>(k)) * NN];
         for (int a = 0; a < NN; ++a) {
             double* fa = buf + 4 * static_cast<size_t>(nd[a] - lo);
-            fa[0] += s.f.v[a][0][k];
-            fa[1] += s.f.v[a][1][k];
-            fa[2] += s.f.v[a][2][k];
+            fa[0] += s.v[a][0][k];
+            fa[1] += s.v[a][1][k];
+            fa[2] += s.v[a][2][k];
         }
+    }
+}
+
+/// The batch's forces into the buffer; in float widened to double first.
+template <int NN, class T>
+FASCIA_INLINE void scatter(Batch<NN, T>& s, int n, const ElementSet<NN>& es, size_t e0, double* __restrict buf, int lo) {
+    if constexpr (!Batch<NN, T>::kMixed) {
+        scatterFrom(s.f, n, es, e0, buf, lo);
+    } else {
+        for (int a = 0; a < NN; ++a)
+            for (int i = 0; i < 3; ++i) {
+                const T* __restrict in = s.f.v[a][i];
+                double* __restrict out = s.fWide.v[a][i];
+#pragma omp simd
+                for (int k = 0; k < n; ++k) out[k] = in[k];
+            }
+        scatterFrom(s.fWide, n, es, e0, buf, lo);
     }
 }
 
 /// Prefetches the element data two batches ahead (at the block's start, the next one too): a batch
 /// reads its data as short streams that the hardware prefetchers pick up late; and, with viscosity,
 /// the next batch's states (docs/performance.md, lesson 11).
-template <int NN>
-FASCIA_INLINE void prefetchAhead(const Impl& im, const ElementSet<NN>& es, const Block& b, size_t e0, const double* G,
+template <int NN, class T>
+FASCIA_INLINE void prefetchAhead(const Impl& im, const ElementSet<NN>& es, const Block& b, size_t e0, const T* G,
                                  bool visco, const KernelIO& io, size_t batch) {
     const size_t len = static_cast<size_t>(es.rows) * kBatch;
     for (size_t ahead = e0 == b.begin ? 1 : 2; ahead <= 2; ++ahead)
-        if (e0 + ahead * kBatch < b.end) simd::prefetch(G + ahead * len, len * sizeof(double));
+        if (e0 + ahead * kBatch < b.end) simd::prefetch(G + ahead * len, len * sizeof(T));
     if (visco && e0 + kBatch < b.end)
         for (size_t v = 0; v < im.visco.size(); ++v) {
             const size_t l = static_cast<size_t>(im.visco[v].terms) * 6 * kBatch;
@@ -364,7 +431,7 @@ FASCIA_INLINE void prefetchAhead(const Impl& im, const ElementSet<NN>& es, const
 
 /// The element loop of one block. U: the invariants the law uses (BaseMaterial::Uses bits), a
 /// compile-time constant so that the vector loops carry no dead branches.
-template <int NN, unsigned U, class Eval>
+template <int NN, unsigned U, class T, class Eval>
 void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO& io) {
     const ElementSet<NN>& es = im.template set<NN>();
     // stress output: the scalar path; forces with viscosity: the viscous path; otherwise (and for
@@ -374,22 +441,22 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
     const ViscoSet* one = viscoP && im.visco.size() == 1 && im.visco[0].terms == 1 && im.visco[0].A.size() == 1 ? &im.visco[0] : nullptr;
     // fibre directions: per element, or the group's copied across a batch-wide row (same loops)
     const Impl::Group& grp = im.groups[static_cast<size_t>(b.group)];
-    alignas(64) double uniformFibre[6][kBatch];
+    alignas(64) T uniformFibre[6][kBatch];
     if (!im.fibresPerElement && (U & (BaseMaterial::UsesI4 | BaseMaterial::UsesI6)))
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < kBatch; ++k) {
-                uniformFibre[c][k] = grp.a0[c];
-                uniformFibre[3 + c][k] = grp.b0[c];
+                uniformFibre[c][k] = static_cast<T>(grp.a0[c]);
+                uniformFibre[3 + c][k] = static_cast<T>(grp.b0[c]);
             }
     const bool packFibres = im.fibresPerElement && es.rows > ElementSet<NN>::kFibreRow;
-    Batch<NN> s;
+    Batch<NN, T> s;
     double energy = 0;
     for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
         const int n = static_cast<int>(std::min<size_t>(kBatch, b.end - e0));
         const size_t batch = b.batchBase + (e0 - b.begin) / kBatch;  // slot of the viscous states
-        const double* __restrict G = es.batchData(b, e0);           // row r at G + r kBatch
+        const T* __restrict G = es.template batchData<T>(b, e0);     // row r at G + r kBatch
         prefetchAhead(im, es, b, e0, G, viscoP, io, batch);
-        const Fibres fib{{packFibres ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0]}};
+        const Fibres<T> fib{{packFibres ? G + ElementSet<NN>::kFibreRow * kBatch : uniformFibre[0]}};
         gather(es, e0, n, io.u, s);
         gradientAndInvariants<NN, U>(s, n, G, fib);
         eval(s, n);

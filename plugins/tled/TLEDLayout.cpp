@@ -6,10 +6,12 @@ namespace fascia::tled {
 
 namespace {
 /// What the element loop reads of one element kind: the packed rows (dN/dX, hourglass vectors,
-/// fibres), the volumes, the connectivity and (hexahedra) the hourglass stiffness.
+/// fibres; in float when mixed), the volumes, the connectivity and (hexahedra) the hourglass stiffness.
 template <int NN>
 size_t elementBytes(const ElementSet<NN>& es) {
-    return es.pack.size() * sizeof(double) + es.vol.size() * sizeof(double) + es.nodes.size() * sizeof(int) +
+    // mixed: the float pack holds the volumes (ElementSet::volRow), the double volumes are not read
+    const size_t vol = es.volRow >= 0 ? 0 : es.vol.size() * sizeof(double);
+    return es.pack.size() * sizeof(double) + es.packF.size() * sizeof(float) + vol + es.nodes.size() * sizeof(int) +
            es.hgK.size() * sizeof(double);
 }
 } // namespace

@@ -25,7 +25,7 @@ template <int NN, int Batch, class T = double>
 struct NodalBatch {
     alignas(64) T v[NN][3][Batch];
     FASCIA_HD FASCIA_INLINE Vec33<T> vec(int a, int k) const { return {v[a][0][k], v[a][1][k], v[a][2][k]}; }
-    FASCIA_HD FASCIA_INLINE void set(int a, int k, const Vec33<T>& f) {
+    FASCIA_HD FASCIA_INLINE void set(int a, int k, Vec33<T> f) {
         v[a][0][k] = f.x;
         v[a][1][k] = f.y;
         v[a][2][k] = f.z;

@@ -68,7 +68,7 @@ FASCIA_HD FASCIA_INLINE Sym33<T> leftCauchyGreen(const Mat33<T>& F) {
 
 /// F a.
 template <class T>
-FASCIA_HD FASCIA_INLINE Vec33<T> apply(const Mat33<T>& F, const Vec33<T>& a) {
+FASCIA_HD FASCIA_INLINE Vec33<T> apply(const Mat33<T>& F, Vec33<T> a) {
     return {F.xx * a.x + F.xy * a.y + F.xz * a.z, F.yx * a.x + F.yy * a.y + F.yz * a.z, F.zx * a.x + F.zy * a.y + F.zz * a.z};
 }
 
@@ -97,7 +97,7 @@ FASCIA_HD FASCIA_INLINE Invariants3<T> invariants(const Mat33<T>& F) {
 
 /// a0 . C a0 = |F a0|^2 (I4, or I6 for b0).
 template <class T>
-FASCIA_HD FASCIA_INLINE T fibreInvariant(const Mat33<T>& F, const Vec33<T>& a) {
+FASCIA_HD FASCIA_INLINE T fibreInvariant(const Mat33<T>& F, Vec33<T> a) {
     const Vec33<T> f = apply(F, a);
     return f.x * f.x + f.y * f.y + f.z * f.z;
 }
@@ -111,8 +111,8 @@ struct Coefficients {
 /// S = Siso + Svol of TLED eq. (10): Siso = 2 [dI1 I + dI2 (I1 I - C) + dI4 A0 + dI6 B0] + J dJiso C^-1
 /// and Svol = J dJvol C^-1, with J C^-1 = cof(F)^T cof(F) / J (J floored at 1e-300 in magnitude).
 template <bool UseI2, bool UseI4, bool UseI6, class T>
-FASCIA_HD FASCIA_INLINE void secondPiola(const Mat33<T>& F, T I1, T J, const Coefficients<T>& r, const Vec33<T>& a,
-                                         const Vec33<T>& b, Sym33<T>& Siso, Sym33<T>& Svol) {
+FASCIA_HD FASCIA_INLINE void secondPiola(const Mat33<T>& F, T I1, T J, const Coefficients<T>& r, Vec33<T> a,
+                                         Vec33<T> b, Sym33<T>& Siso, Sym33<T>& Svol) {
     const Mat33<T> cf = cofactor(F);
     const T c1 = 2 * r.dI1;
     const T iJ = T(1) / (std::abs(J) > T(1e-300) ? J : (J < 0 ? T(-1e-300) : T(1e-300)));
@@ -156,8 +156,8 @@ FASCIA_HD FASCIA_INLINE Mat33<T> firstPiolaOf(const Mat33<T>& F, const Sym33<T>&
 
 /// P = dW/dF of the law's response without forming S (see the file comment).
 template <bool UseI2, bool UseI4, bool UseI6, class T>
-FASCIA_HD FASCIA_INLINE Mat33<T> firstPiola(const Mat33<T>& F, T I1, const Coefficients<T>& r, const Vec33<T>& a,
-                                           const Vec33<T>& b) {
+FASCIA_HD FASCIA_INLINE Mat33<T> firstPiola(const Mat33<T>& F, T I1, const Coefficients<T>& r, Vec33<T> a,
+                                           Vec33<T> b) {
     const T c1 = 2 * r.dI1, cj = r.dJiso + r.dJvol;
     Mat33<T> P{c1 * F.xx + cj * (F.yy * F.zz - F.yz * F.zy), c1 * F.xy + cj * (F.yz * F.zx - F.yx * F.zz),
                c1 * F.xz + cj * (F.yx * F.zy - F.yy * F.zx), c1 * F.yx + cj * (F.xz * F.zy - F.xy * F.zz),
@@ -178,7 +178,7 @@ FASCIA_HD FASCIA_INLINE Mat33<T> firstPiola(const Mat33<T>& F, T I1, const Coeff
         P.zy += c2 * (I1 * F.zy - (B.xz * F.xy + B.yz * F.yy + B.zz * F.zy));
         P.zz += c2 * (I1 * F.zz - (B.xz * F.xz + B.yz * F.yz + B.zz * F.zz));
     }
-    const auto fibre = [&](T c, const Vec33<T>& d) {
+    const auto fibre = [&](T c, Vec33<T> d) {
         const T f0 = c * (F.xx * d.x + F.xy * d.y + F.xz * d.z), f1 = c * (F.yx * d.x + F.yy * d.y + F.yz * d.z),
                 f2 = c * (F.zx * d.x + F.zy * d.y + F.zz * d.z);
         P.xx += f0 * d.x; P.xy += f0 * d.y; P.xz += f0 * d.z;

@@ -165,6 +165,11 @@ public:
         "performance: write the viscous state variables with streaming (cache-bypassing) stores; auto: when "
         "they take more than 8 MiB, where they no longer fit the caches beside the element data. Results are "
         "the same either way"), "auto"};
+    core::Param<std::string> m_precision{this, core::ParamSpec("precision").choices({"double", "mixed"}).help(
+        "double: everything in double. mixed: the element data (shape-function derivatives, volumes, "
+        "hourglass and fibre vectors) and the element loop in float, the displacements, forces, block sums, "
+        "viscous states and energy in double; half the element data and 8-wide vectors. Forces agree with "
+        "double to about 1e-6 of the largest (docs/performance.md, mixed precision)"), "double"};
 
     struct Impl;
 
