@@ -31,18 +31,20 @@ using materials::BaseMaterial;
 
 namespace {
 
-template <class Law, bool Forces, bool Visco>
+// T: the element scalar type, double or float (precision="mixed")
+template <class T, class Law, bool Forces, bool Visco>
 double runLaw(HEMLData& d, size_t b, const double* x) {
     const BaseMaterial* m = d.materials[size_t(d.blocks[b].material)];
     if constexpr (std::is_same_v<Law, elements::GenericLaw>)
-        return runBlock<GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
+        return runBlock<T, GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
     else
-        return runBlock<LawEval<Law>, Forces, Visco>(d, b, {elements::lawOf<Law>(m)}, x);
+        return runBlock<T, LawEval<Law>, Forces, Visco>(d, b, {elements::lawOf<Law>(m)}, x);
 }
 
 template <bool Forces, bool Visco>
 double runSpring(HEMLData& d, size_t b, const double* x) {
-    return runBlock<SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
+    return d.mixed ? runBlock<float, SpringEval, Forces, Visco>(d, b, SpringEval{}, x)
+                   : runBlock<double, SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
 }
 
 } // namespace
@@ -56,12 +58,14 @@ struct HEMLForceField::BlockFns {
 
 namespace {
 
-/// The loops of a material from the one list of built-in laws (elements/LawDispatch.h).
+/// The loops of a material from the one list of built-in laws (elements/LawDispatch.h), with the
+/// element math in T.
+template <class T>
 HEMLForceField::BlockFns loopsFor(const BaseMaterial* m) {
     return elements::selectForLaw(m, [](auto tag) {
         using Law = typename decltype(tag)::type;
-        return HEMLForceField::BlockFns{&runLaw<Law, true, true>, &runLaw<Law, true, false>, &runLaw<Law, false, false>,
-                                        !std::is_same_v<Law, elements::GenericLaw>};
+        return HEMLForceField::BlockFns{&runLaw<T, Law, true, true>, &runLaw<T, Law, true, false>,
+                                        &runLaw<T, Law, false, false>, !std::is_same_v<Law, elements::GenericLaw>};
     });
 }
 
@@ -98,6 +102,9 @@ void HEMLForceField::init() {
     m_data = std::make_unique<HEMLData>();
     HEMLData& d = *m_data;
     d.J0 = m_J0.get();
+    // a value set from code is not checked on the way in (XML is): a located error here
+    m_precision.checkValue();
+    d.mixed = m_precision.get() == "mixed";
 
     // topology and rest positions (the element layer's one rule)
     elements::TetMesh tm = elements::resolveTetMesh(*this, m_mesh, m_tetrahedra);
@@ -185,6 +192,13 @@ void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_
     }
 }
 
+/// precision="mixed": the element arrays rounded to float, the double ones freed (issue 17: the
+/// element data the loop streams is halved, 80 -> 48 bytes per element with the node indices).
+void roundToFloat(HEMLData& d) {
+    d.elf.zip(d.el, [](FVec& f, const DVec& v) { f.assign(v.begin(), v.end()); });
+    d.el = ElementArrays<double>{};
+}
+
 } // namespace
 
 void HEMLForceField::precompute(const Positions& rest) {
@@ -214,7 +228,7 @@ void HEMLForceField::precompute(const Positions& rest) {
         }
     }
     m_fns.clear();
-    for (auto* m : d.materials) m_fns.push_back(loopsFor(m));
+    for (auto* m : d.materials) m_fns.push_back(d.mixed ? loopsFor<float>(m) : loopsFor<double>(m));
 
     // element order: by material, then by lowest internal node (locality of the block buffers)
     std::vector<int> order(ne);
@@ -252,20 +266,21 @@ void HEMLForceField::precompute(const Positions& rest) {
     d.nSlots = d.elementOf.size();
     d.slotOf.assign(ne, -1);
 
-    // per-slot data
+    // per-slot data (computed in double; precision="mixed" rounds it to float below)
     const size_t S = d.nSlots;
     for (auto& v : d.node) v.assign(S, 0);
-    d.vol.assign(S, 0.0);
-    d.invDetV.assign(S, 0.0);
+    ElementArrays<double>& el = d.el;
+    el.vol.assign(S, 0.0);
+    el.invDetV.assign(S, 0.0);
     const bool anyI4 = !m_dirA.empty(), anyI6 = !m_dirB.empty();
     for (int k = 0; k < 6; ++k) {
-        d.G[k].assign(d.massSpring ? 0 : S, 0.0);
-        d.kk[k].assign(d.massSpring ? S : 0, 0.0);
-        d.len0[k].assign(d.massSpring ? S : 0, 0.0);
+        el.G[k].assign(d.massSpring ? 0 : S, 0.0);
+        el.kk[k].assign(d.massSpring ? S : 0, 0.0);
+        el.len0[k].assign(d.massSpring ? S : 0, 0.0);
     }
     for (int k = 0; k < 3; ++k) {
-        d.w4[k].assign(anyI4 ? S : 0, 0.0);
-        d.w6[k].assign(anyI6 ? S : 0, 0.0);
+        el.w4[k].assign(anyI4 ? S : 0, 0.0);
+        el.w6[k].assign(anyI6 ? S : 0, 0.0);
     }
 
     // edges shared between tetrahedra (mass-spring mode splits k between them)
@@ -293,14 +308,14 @@ void HEMLForceField::precompute(const Positions& rest) {
         if (!(std::abs(det) > 1e-12 * maxEdge * maxEdge * maxEdge))
             fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
                  std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
-        d.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
-        d.invDetV[slot] = 1.0 / det;
+        el.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
+        el.invDetV[slot] = 1.0 / det;
         if (!pad) m_altitude[e] = elements::tetAltitude(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]], std::abs(det) / 6.0);
         if (d.massSpring) {
             for (int k = 0; k < 6; ++k) {
                 const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
-                d.len0[k][slot] = (rest[b] - rest[a]).norm();
-                d.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / edgeCount[{std::min(a, b), std::max(a, b)}];
+                el.len0[k][slot] = (rest[b] - rest[a]).norm();
+                el.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / edgeCount[{std::min(a, b), std::max(a, b)}];
             }
             continue;
         }
@@ -308,21 +323,25 @@ void HEMLForceField::precompute(const Positions& rest) {
         // (vtr_k = tr(D_k G), Mtr_ij = tr(D_i G D_j G), a0.C_k a0 = (V^-1 a0).D_k (V^-1 a0))
         const Mat3 Vi = V.inverse();
         const Mat3 G = Vi * Vi.transpose();
-        d.G[0][slot] = G(0, 0);
-        d.G[1][slot] = G(1, 1);
-        d.G[2][slot] = G(2, 2);
-        d.G[3][slot] = G(0, 1);
-        d.G[4][slot] = G(1, 2);
-        d.G[5][slot] = G(0, 2);
+        el.G[0][slot] = G(0, 0);
+        el.G[1][slot] = G(1, 1);
+        el.G[2][slot] = G(2, 2);
+        el.G[3][slot] = G(0, 1);
+        el.G[4][slot] = G(1, 2);
+        el.G[5][slot] = G(0, 2);
         if (anyI4) {
             const Vec3 w = m_dirA[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirA[e]);
-            for (int q = 0; q < 3; ++q) d.w4[q][slot] = w[q];
+            for (int q = 0; q < 3; ++q) el.w4[q][slot] = w[q];
         }
         if (anyI6) {
             const Vec3 w = m_dirB[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirB[e]);
-            for (int q = 0; q < 3; ++q) d.w6[q][slot] = w[q];
+            for (int q = 0; q < 3; ++q) el.w6[q][slot] = w[q];
         }
     }
+
+    d.totalVolume = 0;
+    for (size_t s = 0; s < S; ++s) d.totalVolume += el.vol[s];
+    if (d.mixed) roundToFloat(d);
 
     buildNodeRows(d);
     setUpVisco(d, m_visco, S);
@@ -471,8 +490,7 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
         return w2 > 0 ? 2.0 / std::sqrt(w2) : inf;
     }
     // the density, else the total mass over the mesh volume (the element layer's one rule)
-    double V = 0;
-    for (size_t s = 0; s < d.nSlots; ++s) V += d.vol[s];
+    const double V = d.totalVolume;
     return elements::stableTimeStep(
         m_tets.size(), [&](size_t e) { return m_altitude[e]; }, [&](size_t e) { return m_elementMaterial[e]; },
         elements::densityFor(*mass, V));
@@ -496,7 +514,7 @@ Mat3 viscousStress(const HEMLData& d, size_t slot, const Mat3& V, const Mat3& F,
               (r.dJiso - q) * JCi;
     if (d.relaxVol) Sr += (r.dJvol + q) * JCi;
     const Mat3 Vi = V.inverse(), M = Vi * Sr * Vi.transpose();
-    const double vol = d.vol[slot];
+    const double vol = d.volume(slot);
     double R[6];
     traceDk(M(0, 0), M(1, 1), M(2, 2), M(0, 1), M(1, 2), M(0, 2), R);
     double g[6] = {0, 0, 0, 0, 0, 0};

@@ -1,7 +1,10 @@
 #pragma once
 /// Internal to HEMLForceField: the element data as structure of arrays and the element loop
 /// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
-/// virtual call for any other material, or the mass-spring energy of eq. (38)).
+/// virtual call for any other material, or the mass-spring energy of eq. (38)) and on the scalar
+/// type T of the element data and math: double, or float for precision="mixed" (issue 17). The
+/// element math is written once for both; node positions, the block's node rows and the energy
+/// sum are double in both.
 #include "fascia/base/Simd.h"
 #include "fascia/elements/BlockBuffers.h"
 #include "fascia/elements/Hd.h"
@@ -11,12 +14,24 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace fascia::heml {
 
 using simd::DVec;
 using simd::IVec;
+/// 64-byte aligned per-slot array of the element scalar type T.
+template <class T>
+using SVec = std::vector<T, simd::AlignedAllocator<T>>;
+using FVec = SVec<float>;
+
+/// The smallest squared length / |J| the loop divides by: 1e-300 in double (as before the
+/// template), 1e-30 in float (1e-300 would round to 0 there).
+template <class T>
+constexpr T kTiny = T(1e-300);
+template <>
+constexpr float kTiny<float> = 1e-30f;
 
 /// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lesson 3).
 constexpr int kLanes = 16;
@@ -30,7 +45,8 @@ constexpr int kEdgeA[6] = {0, 0, 0, 1, 2, 3};
 constexpr int kEdgeB[6] = {1, 2, 3, 2, 3, 1};
 /// tr(D_k M) for the six D_k of eq. (A.6) and a symmetric M = (M11 M22 M33 M12 M23 M13): the map
 /// from a 3x3 tensor in the rest edge basis to the six link coefficients.
-inline void traceDk(double M11, double M22, double M33, double M12, double M23, double M13, double out[6]) {
+template <class T>
+FASCIA_INLINE void traceDk(T M11, T M22, T M33, T M12, T M23, T M13, T out[6]) {
     out[0] = M11 + M12 + M13;
     out[1] = M22 + M12 + M23;
     out[2] = M33 + M13 + M23;
@@ -47,6 +63,36 @@ struct Block {
     int material = -1;  ///< index into HEMLData::materials, -1 in mass-spring mode
 };
 
+/// The per-slot element arrays the loop reads, in the element scalar type T.
+template <class T>
+struct ElementArrays {
+    SVec<T> vol;      ///< rest volume Vol (0 in padding slots)
+    SVec<T> invDetV;  ///< 1 / det(V1, V2, V3) (signed)
+    /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
+    /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
+    /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
+    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lesson 7).
+    SVec<T> G[6];
+    SVec<T> w4[3], w6[3];    ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
+    SVec<T> kk[6], len0[6];  ///< mass-spring mode: stiffness share and rest length per edge
+
+    /// Bytes of the arrays (sizeof(T) each: 4 in mixed mode), for HEMLForceField::layoutBytes.
+    size_t bytes() const {
+        size_t n = vol.size() + invDetV.size();
+        for (int k = 0; k < 6; ++k) n += G[k].size() + kk[k].size() + len0[k].size();
+        for (int k = 0; k < 3; ++k) n += w4[k].size() + w6[k].size();
+        return n * sizeof(T);
+    }
+    /// Calls f(mine, other's) on each pair of arrays (the rounding to float of precision="mixed").
+    template <class U, class F>
+    void zip(const ElementArrays<U>& o, F&& f) {
+        f(vol, o.vol);
+        f(invDetV, o.invDetV);
+        for (int k = 0; k < 6; ++k) f(G[k], o.G[k]), f(kk[k], o.kk[k]), f(len0[k], o.len0[k]);
+        for (int k = 0; k < 3; ++k) f(w4[k], o.w4[k]), f(w6[k], o.w6[k]);
+    }
+};
+
 /// Everything the element loop reads and writes.
 struct HEMLData {
     size_t nNodes = 0, nElements = 0, nSlots = 0;
@@ -57,15 +103,19 @@ struct HEMLData {
 
     // per slot (structure of arrays)
     IVec node[4];          ///< the block's node rows (in HEMLData::rows; internal nodes before that)
-    DVec vol;              ///< rest volume Vol (0 in padding slots)
-    DVec invDetV;          ///< 1 / det(V1, V2, V3) (signed)
-    /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
-    /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
-    /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
-    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lesson 7).
-    DVec G[6];
-    DVec w4[3], w6[3];     ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
-    DVec kk[6], len0[6];   ///< mass-spring mode: stiffness share and rest length per edge
+    /// The element arrays of precision="double" (el) or "mixed" (elf): the other one is empty, so
+    /// mixed mode holds 4 + 4 + 6 * 4 bytes per element besides the node indices, not 8 + 8 + 6 * 8.
+    ElementArrays<double> el;
+    ElementArrays<float> elf;
+    bool mixed = false;       ///< precision="mixed": the loop runs in float (elf)
+    double totalVolume = 0;   ///< sum of the rest volumes (in double, before any rounding to float)
+    template <class T>
+    const ElementArrays<T>& arrays() const {
+        if constexpr (std::is_same_v<T, float>) return elf;
+        else return el;
+    }
+    /// The rest volume of a slot in double (from whichever arrays are kept).
+    double volume(size_t slot) const { return mixed ? double(elf.vol[slot]) : el.vol[slot]; }
 
     std::vector<Block> blocks;
     std::vector<const materials::BaseMaterial*> materials;
@@ -83,67 +133,78 @@ struct HEMLData {
     /// them relaxes, so that each is stress-free at rest (materials/RelaxationSplit.h); 0 when both relax
     std::vector<double> restShift;
     std::vector<double> A, B;         ///< A_i, B_i of the last evaluation (TLED eq. (30), HEML eq. (20))
-    std::vector<DVec> Yprev, Ycur;    ///< the committed history and the last evaluation's
+    /// the committed history and the last evaluation's; double in both precisions (the loop
+    /// converts the relaxed link coefficients to double, and the sum of the terms back to T)
+    std::vector<DVec> Yprev, Ycur;
     viscoelastic::HistoryClock clock;  ///< when the history advances and over what time
 };
 
-/// Scratch of one chunk (on the stack of the thread running a block).
+/// Scratch of one chunk (on the stack of the thread running a block), in the element scalar type T
+/// but for the gathered positions (double: the edge differences are taken in double).
+template <class T>
 struct alignas(64) Chunk {
     double px[4][3][kLanes];
-    double ev[6][3][kLanes];
-    double l[6][kLanes];
-    double H[6][kLanes];  ///< G D(l) G (symmetric)
-    double I1[kLanes], I2[kLanes], J[kLanes], I4[kLanes], I6[kLanes];
-    double We[kLanes];  ///< element energies Vol W
-    double gk[6][kLanes], Qi[kLanes], Qv[kLanes];  ///< generalised forces Vol dW/dl_k, Vol dW/dJ (iso, vol)
-    double W[kLanes], dI1[kLanes], dI2[kLanes], dI4[kLanes], dI6[kLanes], dJiso[kLanes], dJvol[kLanes];
-    double f[4][3][kLanes];
+    T ev[6][3][kLanes];
+    T l[6][kLanes];
+    T H[6][kLanes];  ///< G D(l) G (symmetric)
+    T I1[kLanes], I2[kLanes], J[kLanes], I4[kLanes], I6[kLanes];
+    T We[kLanes];  ///< element energies Vol W
+    T gk[6][kLanes], Qi[kLanes], Qv[kLanes];  ///< generalised forces Vol dW/dl_k, Vol dW/dJ (iso, vol)
+    T W[kLanes], dI1[kLanes], dI2[kLanes], dI4[kLanes], dI6[kLanes], dJiso[kLanes], dJvol[kLanes];
+    T f[4][3][kLanes];
+    // the batched virtual call (GenericEval) is double only: BaseMaterial::evaluate
     materials::Invariants inv[kLanes];
     materials::Response resp[kLanes];
 
-    /// Lane j's law response into the structure-of-arrays fields.
-    void store(int j, const materials::Response& r) {
-        W[j] = r.W;
-        dI1[j] = r.dI1;
-        dI2[j] = r.dI2;
-        dI4[j] = r.dI4;
-        dI6[j] = r.dI6;
-        dJiso[j] = r.dJiso;
-        dJvol[j] = r.dJvol;
+    /// Lane j's law response (in T, or the double of BaseMaterial::evaluate) into the
+    /// structure-of-arrays fields.
+    template <class R>
+    void store(int j, const materials::ResponseT<R>& r) {
+        W[j] = T(r.W);
+        dI1[j] = T(r.dI1);
+        dI2[j] = T(r.dI2);
+        dI4[j] = T(r.dI4);
+        dI6[j] = T(r.dI6);
+        dJiso[j] = T(r.dJiso);
+        dJvol[j] = T(r.dJvol);
     }
 };
 
-/// An inlined built-in law.
+/// An inlined built-in law, evaluated in T (the laws are templated on the scalar, Material.h).
 template <class Law>
 struct LawEval {
     static constexpr bool spring = false;
     const Law& law;
     unsigned uses() const { return Law::uses; }
-    void operator()(Chunk& c, double J0) const {
+    template <class T>
+    void operator()(Chunk<T>& c, double J0) const {
         // plain auto-vectorisation: "omp simd" would privatise the structs into arrays and fail
 #pragma GCC ivdep
         for (int j = 0; j < kLanes; ++j) {
-            materials::Invariants in;
+            materials::InvariantsT<T> in;
             in.I1 = c.I1[j];
             in.I2 = c.I2[j];
             in.J = c.J[j];
             in.I4 = c.I4[j];
             in.I6 = c.I6[j];
-            materials::Response r;
+            materials::ResponseT<T> r;
             materials::evaluateLaw(law, in, J0, r);
             c.store(j, r);
         }
     }
 };
 
-/// Any material: one virtual call per chunk.
+/// Any material: one virtual call per chunk. BaseMaterial::evaluate is double only, so a float
+/// chunk's invariants go in as double and the response comes back rounded to float.
 struct GenericEval {
     static constexpr bool spring = false;
     const materials::BaseMaterial* m;
     unsigned usesBits;
     unsigned uses() const { return usesBits; }
-    void operator()(Chunk& c, double J0) const {
-        for (int j = 0; j < kLanes; ++j) c.inv[j] = materials::Invariants{c.I1[j], c.I2[j], c.J[j], c.I4[j], c.I6[j]};
+    template <class T>
+    void operator()(Chunk<T>& c, double J0) const {
+        for (int j = 0; j < kLanes; ++j)
+            c.inv[j] = materials::Invariants{double(c.I1[j]), double(c.I2[j]), double(c.J[j]), double(c.I4[j]), double(c.I6[j])};
         m->evaluate(c.inv, c.resp, kLanes, J0);
         for (int j = 0; j < kLanes; ++j) {
             c.store(j, c.resp[j]);
@@ -156,44 +217,47 @@ struct SpringEval {
     static constexpr bool spring = true;
     unsigned uses() const { return 0; }
 };
-/// Edges, squared lengths l_k, invariants (eq. (C.1)) and J of the chunk at e0.
-template <class Eval>
-FASCIA_INLINE void edgesAndInvariants(HEMLData& d, Chunk& c, size_t e0, bool useI4, bool useI6) {
-    const double* invDetV = d.invDetV.data() + e0;
+/// Edges, squared lengths l_k, invariants (eq. (C.1)) and J of the chunk at e0. The edges are
+/// differences of the double positions, rounded to T once formed (in float: accurate edges of a
+/// small element far from the origin); all after that is in T.
+template <class T, class Eval>
+FASCIA_INLINE void edgesAndInvariants(const HEMLData& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
+    const ElementArrays<T>& el = d.arrays<T>();
+    const T* invDetV = el.invDetV.data() + e0;
     // (GCC ivdep, not omp simd: omp simd would privatise the small local arrays into memory)
 #pragma GCC ivdep
     for (int j = 0; j < kLanes; ++j) {
-        double ev[6][3], l[6];
+        T ev[6][3], l[6];
         for (int k = 0; k < 6; ++k) {
-            for (int q = 0; q < 3; ++q) ev[k][q] = c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j];
+            for (int q = 0; q < 3; ++q) ev[k][q] = T(c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j]);
             l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
             c.l[k][j] = l[k];
             for (int q = 0; q < 3; ++q) c.ev[k][q][j] = ev[k][q];
         }
         // signed volume ratio: det(v1, v2, v3) / det(V1, V2, V3)
-        const double det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
-                           ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
-                           ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
+        const T det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
+                      ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
+                      ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
         c.J[j] = det * invDetV[j];
         if constexpr (!Eval::spring) {
             // D(l) of eq. (A.4): D = V^T C V
-            const double D11 = l[0], D22 = l[1], D33 = l[2];
-            const double D12 = 0.5 * (l[0] + l[1] - l[3]), D23 = 0.5 * (l[1] + l[2] - l[4]), D13 = 0.5 * (l[0] + l[2] - l[5]);
-            const double g11 = d.G[0][e0 + j], g22 = d.G[1][e0 + j], g33 = d.G[2][e0 + j];
-            const double g12 = d.G[3][e0 + j], g23 = d.G[4][e0 + j], g13 = d.G[5][e0 + j];
+            const T D11 = l[0], D22 = l[1], D33 = l[2];
+            const T D12 = T(0.5) * (l[0] + l[1] - l[3]), D23 = T(0.5) * (l[1] + l[2] - l[4]), D13 = T(0.5) * (l[0] + l[2] - l[5]);
+            const T g11 = el.G[0][e0 + j], g22 = el.G[1][e0 + j], g33 = el.G[2][e0 + j];
+            const T g12 = el.G[3][e0 + j], g23 = el.G[4][e0 + j], g13 = el.G[5][e0 + j];
             // I1 = vtr.l = tr(D G)   (eq. (C.1))
-            const double I1 = D11 * g11 + D22 * g22 + D33 * g33 + 2.0 * (D12 * g12 + D23 * g23 + D13 * g13);
+            const T I1 = D11 * g11 + D22 * g22 + D33 * g33 + T(2) * (D12 * g12 + D23 * g23 + D13 * g13);
             // H = G D G, so that (Mtr l)_k = tr(D_k H) and tr(C^2) = l^T Mtr l = tr(D H)
-            const double P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
-                         P13 = g11 * D13 + g12 * D23 + g13 * D33;
-            const double P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
-                         P23 = g12 * D13 + g22 * D23 + g23 * D33;
-            const double P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
-                         P33 = g13 * D13 + g23 * D23 + g33 * D33;
-            const double H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
-                         H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
-                         H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
-            const double trC2 = D11 * H11 + D22 * H22 + D33 * H33 + 2.0 * (D12 * H12 + D23 * H23 + D13 * H13);
+            const T P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
+                    P13 = g11 * D13 + g12 * D23 + g13 * D33;
+            const T P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
+                    P23 = g12 * D13 + g22 * D23 + g23 * D33;
+            const T P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
+                    P33 = g13 * D13 + g23 * D23 + g33 * D33;
+            const T H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
+                    H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
+                    H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
+            const T trC2 = D11 * H11 + D22 * H22 + D33 * H33 + T(2) * (D12 * H12 + D23 * H23 + D13 * H13);
             c.H[0][j] = H11;
             c.H[1][j] = H22;
             c.H[2][j] = H33;
@@ -201,16 +265,16 @@ FASCIA_INLINE void edgesAndInvariants(HEMLData& d, Chunk& c, size_t e0, bool use
             c.H[4][j] = H23;
             c.H[5][j] = H13;
             c.I1[j] = I1;
-            c.I2[j] = 0.5 * (I1 * I1 - trC2);
-            double I4 = 1.0, I6 = 1.0;
+            c.I2[j] = T(0.5) * (I1 * I1 - trC2);
+            T I4 = T(1), I6 = T(1);
             if (useI4) {
                 // I4 = a0.C a0 = w.D w, w = V^-1 a0
-                const double w1 = d.w4[0][e0 + j], w2 = d.w4[1][e0 + j], w3 = d.w4[2][e0 + j];
-                I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+                const T w1 = el.w4[0][e0 + j], w2 = el.w4[1][e0 + j], w3 = el.w4[2][e0 + j];
+                I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + T(2) * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
             }
             if (useI6) {
-                const double w1 = d.w6[0][e0 + j], w2 = d.w6[1][e0 + j], w3 = d.w6[2][e0 + j];
-                I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + 2.0 * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
+                const T w1 = el.w6[0][e0 + j], w2 = el.w6[1][e0 + j], w3 = el.w6[2][e0 + j];
+                I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + T(2) * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
             }
             c.I4[j] = I4;
             c.I6[j] = I6;
@@ -219,35 +283,36 @@ FASCIA_INLINE void edgesAndInvariants(HEMLData& d, Chunk& c, size_t e0, bool use
 }
 
 /// Generalised forces g_k = Vol dW/dl_k (eq. (29), (C.2)-(C.3)) and Vol dW/dJ of the chunk at e0.
-template <class Eval>
-FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI4, bool useI6) {
-    const double* vol = d.vol.data() + e0;
+template <class T, class Eval>
+FASCIA_INLINE void generalisedForces(const HEMLData& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
+    const ElementArrays<T>& el = d.arrays<T>();
+    const T* vol = el.vol.data() + e0;
 #pragma GCC ivdep
     for (int j = 0; j < kLanes; ++j) {
-        double g[6], Qiso, Qvol, W;
-        const double V = vol[j];
+        T g[6], Qiso, Qvol, W;
+        const T V = vol[j];
         if constexpr (Eval::spring) {
             // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
-            W = 0.0;
+            W = T(0);
             for (int k = 0; k < 6; ++k) {
-                const double L2 = c.l[k][j] > 1e-300 ? c.l[k][j] : 1e-300;
-                const double len = std::sqrt(L2);
-                const double kk = d.kk[k][e0 + j], l0 = d.len0[k][e0 + j];
-                W += 0.5 * kk * (len - l0) * (len - l0);
-                g[k] = 0.5 * kk * (1.0 - l0 / len);
+                const T L2 = c.l[k][j] > kTiny<T> ? c.l[k][j] : kTiny<T>;
+                const T len = std::sqrt(L2);
+                const T kk = el.kk[k][e0 + j], l0 = el.len0[k][e0 + j];
+                W += T(0.5) * kk * (len - l0) * (len - l0);
+                g[k] = T(0.5) * kk * (T(1) - l0 / len);
             }
-            Qiso = Qvol = 0.0;
+            Qiso = Qvol = T(0);
         } else {
             W = V * c.W[j];
             // g_k = Vol (dI1 vtr_k + dI2 (I1 vtr_k - (Mtr l)_k) + dI4 a0.C_k a0 + dI6 b0.C_k b0)   (eq. (C.2)-(C.3))
             //     = Vol tr(D_k Sg),  Sg = dI1 G + dI2 (I1 G - H) + dI4 w w^T + dI6 u u^T
-            const double I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
-            const double a = dI1 + dI2 * I1;
-            double Sg[6];
-            for (int q = 0; q < 6; ++q) Sg[q] = a * d.G[q][e0 + j] - dI2 * c.H[q][j];
+            const T I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
+            const T a = dI1 + dI2 * I1;
+            T Sg[6];
+            for (int q = 0; q < 6; ++q) Sg[q] = a * el.G[q][e0 + j] - dI2 * c.H[q][j];
             // Sg += s w w^T (6 components), w = V^-1 a0 or V^-1 b0
-            const auto addFibre = [&](const DVec* w, double sf) {
-                const double w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
+            const auto addFibre = [&](const SVec<T>* w, T sf) {
+                const T w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
                 Sg[0] += sf * w1 * w1;
                 Sg[1] += sf * w2 * w2;
                 Sg[2] += sf * w3 * w3;
@@ -255,8 +320,8 @@ FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI
                 Sg[4] += sf * w2 * w3;
                 Sg[5] += sf * w1 * w3;
             };
-            if (useI4) addFibre(d.w4, c.dI4[j]);
-            if (useI6) addFibre(d.w6, c.dI6[j]);
+            if (useI4) addFibre(el.w4, c.dI4[j]);
+            if (useI6) addFibre(el.w6, c.dI6[j]);
             traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
             for (int k = 0; k < 6; ++k) g[k] *= V;
             Qiso = V * c.dJiso[j];
@@ -266,6 +331,40 @@ FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI
         for (int k = 0; k < 6; ++k) c.gk[k][j] = g[k];
         c.Qi[j] = Qiso;
         c.Qv[j] = Qvol;
+    }
+}
+
+/// The relaxed part R_k of the chunk's generalised forces as link coefficients (see relax), in T.
+template <class T>
+FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift, T rel[6][kLanes]) {
+    const ElementArrays<T>& el = d.arrays<T>();
+    // the parts that relax, each stress-free at rest: Vol s / J moved from Qi to Qv (their sum, the
+    // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
+    if (shift != 0.0) {
+        const T* vol = el.vol.data() + e0;
+        for (int j = 0; j < kLanes; ++j) {
+            const T q = vol[j] * T(shift) / std::max(T(d.J0), c.J[j]);
+            c.Qi[j] -= q;
+            c.Qv[j] += q;
+        }
+    }
+    // the relaxed part as link coefficients R_k: g_k when the isochoric part relaxes, plus the
+    // relaxed J coefficient (Qi, Qv or both, per `apply`) through dJ/dl_k
+    const T* invDetV = el.invDetV.data() + e0;
+    const T wIso = d.relaxIso ? T(1) : T(0), wVol = d.relaxVol ? T(1) : T(0);  // (no branch in the loop)
+#pragma GCC ivdep
+    for (int j = 0; j < kLanes; ++j) {
+        const T l0 = c.l[0][j], l1 = c.l[1][j], l2 = c.l[2][j];
+        const T D11 = l0, D22 = l1, D33 = l2;
+        const T D12 = T(0.5) * (l0 + l1 - c.l[3][j]), D23 = T(0.5) * (l1 + l2 - c.l[4][j]), D13 = T(0.5) * (l0 + l2 - c.l[5][j]);
+        const T J = c.J[j];
+        const T iJ = T(1) / (std::abs(J) > kTiny<T> ? J : (J < T(0) ? -kTiny<T> : kTiny<T>));
+        const T Q = wIso * c.Qi[j] + wVol * c.Qv[j];
+        const T s = T(0.5) * Q * invDetV[j] * invDetV[j] * iJ;
+        T out[6];
+        traceDk(s * (D22 * D33 - D23 * D23), s * (D11 * D33 - D13 * D13), s * (D11 * D22 - D12 * D12),
+                s * (D13 * D23 - D12 * D33), s * (D12 * D13 - D11 * D23), s * (D12 * D23 - D13 * D22), out);
+        for (int k = 0; k < 6; ++k) rel[k][j] = wIso * c.gk[k][j] + out[k];
     }
 }
 
@@ -285,36 +384,13 @@ FASCIA_INLINE void generalisedForces(HEMLData& d, Chunk& c, size_t e0, bool useI
 /// different current geometry (the edges for g_k, cof F for the J part): under a changing
 /// deformation their rest values no longer cancel (a creep test crept 4.6 % more at t = tau,
 /// tests/verification/TestQuasiStaticCreep.cpp).
-FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
-    // the parts that relax, each stress-free at rest: Vol s / J moved from Qi to Qv (their sum, the
-    // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
-    if (shift != 0.0) {
-        const double* vol = d.vol.data() + e0;
-        for (int j = 0; j < kLanes; ++j) {
-            const double q = vol[j] * shift / std::max(d.J0, c.J[j]);
-            c.Qi[j] -= q;
-            c.Qv[j] += q;
-        }
-    }
-    // the relaxed part as link coefficients R_k: g_k when the isochoric part relaxes, plus the
-    // relaxed J coefficient (Qi, Qv or both, per `apply`) through dJ/dl_k
-    const double* invDetV = d.invDetV.data() + e0;
-    const double wIso = d.relaxIso ? 1.0 : 0.0, wVol = d.relaxVol ? 1.0 : 0.0;  // (no branch in the loop)
-    double rel[6][kLanes];
-#pragma GCC ivdep
-    for (int j = 0; j < kLanes; ++j) {
-        const double l0 = c.l[0][j], l1 = c.l[1][j], l2 = c.l[2][j];
-        const double D11 = l0, D22 = l1, D33 = l2;
-        const double D12 = 0.5 * (l0 + l1 - c.l[3][j]), D23 = 0.5 * (l1 + l2 - c.l[4][j]), D13 = 0.5 * (l0 + l2 - c.l[5][j]);
-        const double J = c.J[j];
-        const double iJ = 1.0 / (std::abs(J) > 1e-300 ? J : (J < 0 ? -1e-300 : 1e-300));
-        const double Q = wIso * c.Qi[j] + wVol * c.Qv[j];
-        const double s = 0.5 * Q * invDetV[j] * invDetV[j] * iJ;
-        double out[6];
-        traceDk(s * (D22 * D33 - D23 * D23), s * (D11 * D33 - D13 * D13), s * (D11 * D22 - D12 * D12),
-                s * (D13 * D23 - D12 * D33), s * (D12 * D13 - D11 * D23), s * (D12 * D23 - D13 * D22), out);
-        for (int k = 0; k < 6; ++k) rel[k][j] = wIso * c.gk[k][j] + out[k];
-    }
+/// The history gamma is double in both precisions: R_k is converted to double for the recurrence
+/// (so the states do not accumulate float rounding over the steps) and the sum of the terms is
+/// rounded to T once, where it is subtracted.
+template <class T>
+FASCIA_INLINE void relax(HEMLData& d, Chunk<T>& c, size_t e0, double shift) {
+    T rel[6][kLanes];
+    relaxedPart(d, c, e0, shift, rel);
     // eq. (20) / TLED eq. (30): gamma_i^n = A_i R^n + B_i gamma_i^(n-1); eq. (18): g_k - sum_i gamma_i
     // (the J coefficients keep their elastic values: the relaxed J part's history is in gamma)
     double sum[6][kLanes] = {};
@@ -325,43 +401,44 @@ FASCIA_INLINE void relax(HEMLData& d, Chunk& c, size_t e0, double shift) {
             double* yc = d.Ycur[size_t(t * 6 + q)].data() + e0;
 #pragma GCC ivdep
             for (int j = 0; j < kLanes; ++j) {
-                const double y = A * rel[q][j] + Bt * yp[j];
+                const double y = A * double(rel[q][j]) + Bt * yp[j];
                 yc[j] = y;
                 sum[q][j] += y;
             }
         }
     }
     for (int k = 0; k < 6; ++k)
-        for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= sum[k][j];
+        for (int j = 0; j < kLanes; ++j) c.gk[k][j] -= T(sum[k][j]);
 }
 
 /// Nodal forces of the chunk at e0 from its generalised forces.
-FASCIA_INLINE void nodalForces(HEMLData& d, Chunk& c, size_t e0) {
-    const double* invDetV = d.invDetV.data() + e0;
+template <class T>
+FASCIA_INLINE void nodalForces(const HEMLData& d, Chunk<T>& c, size_t e0) {
+    const T* invDetV = d.arrays<T>().invDetV.data() + e0;
 #pragma GCC ivdep
     for (int j = 0; j < kLanes; ++j) {
-        double g[6];
+        T g[6];
         for (int k = 0; k < 6; ++k) g[k] = c.gk[k][j];
-        const double Qiso = c.Qi[j], Qvol = c.Qv[j];
-        double f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        const T Qiso = c.Qi[j], Qvol = c.Qv[j];
+        T f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
         // links: -2 g_k (x_a - x_b) on a, the opposite on b (eq. (12)-(13), (B.1)-(B.2))
         for (int k = 0; k < 6; ++k)
             for (int q = 0; q < 3; ++q) {
-                const double t = 2.0 * g[k] * c.ev[k][q][j];
+                const T t = T(2) * g[k] * c.ev[k][q][j];
                 f[kEdgeA[k]][q] += t;
                 f[kEdgeB[k]][q] -= t;
             }
         // volume: -Vol dW/dJ dJ/dx_i, dJ/dx_i = d det(v)/dx_i / det(V) (eq. (C.4))
-        const double cJ = (Qiso + Qvol) * invDetV[j];
-        double v1[3], v2[3], v3[3];
+        const T cJ = (Qiso + Qvol) * invDetV[j];
+        T v1[3], v2[3], v3[3];
         for (int q = 0; q < 3; ++q) {
             v1[q] = c.ev[0][q][j];
             v2[q] = c.ev[1][q][j];
             v3[q] = c.ev[2][q][j];
         }
-        const double g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
-        const double g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
-        const double g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
+        const T g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
+        const T g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
+        const T g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
         for (int q = 0; q < 3; ++q) {
             f[1][q] -= cJ * g1[q];
             f[2][q] -= cJ * g2[q];
@@ -373,12 +450,24 @@ FASCIA_INLINE void nodalForces(HEMLData& d, Chunk& c, size_t e0) {
     }
 }
 
+/// The chunk's nodal forces in double, for the block's double node rows: a double chunk's own, a
+/// float chunk's converted into tmp (only the element forces are float; their sums are double).
+using NodalRows = double[4][3][kLanes];
+FASCIA_INLINE const NodalRows& forcesInDouble(const Chunk<double>& c, NodalRows&) { return c.f; }
+FASCIA_INLINE const NodalRows& forcesInDouble(const Chunk<float>& c, NodalRows& tmp) {
+    for (int a = 0; a < 4; ++a)
+        for (int q = 0; q < 3; ++q)
+            for (int j = 0; j < kLanes; ++j) tmp[a][q][j] = double(c.f[a][q][j]);
+    return tmp;
+}
+
 /// Runs block bi at positions x (HEMLData::rows.positionsIn's result): forces into the block's node
-/// buffer (when Forces) and its energy.
+/// buffer (when Forces) and its energy (summed in double), the element math in T.
 /// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
-template <class Eval, bool Forces, bool Visco>
+template <class T, class Eval, bool Forces, bool Visco>
 double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
-    Chunk c;
+    Chunk<T> c;
+    alignas(64) NodalRows fd;  // (float chunks: their nodal forces in double)
     double energy = 0.0;
     const Block& b = d.blocks[bi];
     d.rows.loadBlock<Forces>(bi, x);
@@ -393,18 +482,19 @@ double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
         for (int j = 0; j < kLanes; j += 4)
             for (int a = 0; a < 4; ++a)
                 simd::gather4(xin, d.node[a].data() + e0 + j, 1, &c.px[a][0][j], &c.px[a][1][j], &c.px[a][2][j]);
-        edgesAndInvariants<Eval>(d, c, e0, useI4, useI6);
+        edgesAndInvariants<T, Eval>(d, c, e0, useI4, useI6);
         if constexpr (!Eval::spring) eval(c, d.J0);  // the law
-        generalisedForces<Eval>(d, c, e0, useI4, useI6);
+        generalisedForces<T, Eval>(d, c, e0, useI4, useI6);
         if constexpr (Forces && Visco) relax(d, c, e0, b.material >= 0 ? d.restShift[size_t(b.material)] : 0.0);
         if constexpr (Forces) nodalForces(d, c, e0);
-        for (int j = 0; j < kLanes; ++j) energy += c.We[j];
+        for (int j = 0; j < kLanes; ++j) energy += double(c.We[j]);
         // scatter into the block's node buffer, in a fixed order (each row loaded, added and stored
         // before the next, so elements sharing a node add up correctly)
         if constexpr (Forces) {
+            const NodalRows& f = forcesInDouble(c, fd);
             for (int j = 0; j < kLanes; j += 4)
                 for (int a = 0; a < 4; ++a)
-                    simd::scatterAdd4(buf, d.node[a].data() + e0 + j, 1, &c.f[a][0][j], &c.f[a][1][j], &c.f[a][2][j]);
+                    simd::scatterAdd4(buf, d.node[a].data() + e0 + j, 1, &f[a][0][j], &f[a][1][j], &f[a][2][j]);
         }
     }
     return energy;

@@ -10,12 +10,10 @@ core::LayoutBytes HEMLForceField::layoutBytes() const {
     core::LayoutBytes b = d.rows.stepBytes();  // positions in, the rows, their sum into f
     constexpr size_t D = sizeof(double);
     // per slot, what the element loop reads: the node rows, the volume, 1 / det V (J) and G; the
-    // fibre terms and the spring data where present (empty arrays otherwise)
-    size_t e = d.vol.size() * D + d.invDetV.size() * D;
+    // fibre terms and the spring data where present (empty arrays otherwise). 8 bytes each in
+    // double precision, 4 in mixed (the other precision's arrays are empty)
+    size_t e = d.el.bytes() + d.elf.bytes();
     for (const auto& n : d.node) e += n.size() * sizeof(int);
-    for (const auto& g : d.G) e += g.size() * D;
-    for (int i = 0; i < 3; ++i) e += (d.w4[i].size() + d.w6[i].size()) * D;
-    for (int k = 0; k < 6; ++k) e += (d.kk[k].size() + d.len0[k].size()) * D;
     // viscosity: the committed history read, the current states written
     for (const auto& y : d.Yprev) e += y.size() * D;
     for (const auto& y : d.Ycur) e += y.size() * D;
