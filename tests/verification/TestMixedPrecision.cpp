@@ -2,7 +2,7 @@
 // whole runs, for HEMLForceField and TLEDForceField (docs/performance.md, "Mixed precision"):
 // - the abdomen scene (scenes/heml/abdomen.xml: 21,285 tetrahedra, the top pushed 10 mm down, then
 //   held, damped) over 10,000 steps: the positions of every node stay within a small fraction of the
-//   largest displacement at every 1,000th step;
+//   largest displacement at every 1,000th step (1e-5 of it);
 // - energy drift: the same organ, undamped and unloaded, released from a smooth deformation; over
 //   4,000 steps the total energy (kinetic + strain) of the mixed run follows the double run's.
 // The force-level accuracy (1e-5 of the largest force) is tested by each force field's own tests.
@@ -101,7 +101,7 @@ TEST_CASE("precision mixed follows the double trajectory of the abdomen scene ov
         }
         CAPTURE(k, umax, diff);
         REQUIRE(umax > 1e-3);  // the push is under way, then held (10 mm)
-        CHECK(diff <= 1e-4 * umax);
+        CHECK(diff <= 1e-5 * umax);  // measured 3.9e-7 (HEML) and 5.6e-7 (TLED)
         CHECK(diff > 0);
         worst = std::max(worst, diff / umax);
     }
@@ -136,7 +136,7 @@ TEST_CASE("precision mixed keeps the total energy of an undamped free vibration 
     }
     CAPTURE(d.E[0], m.E[0], driftD, driftM, apart);
     CHECK(std::abs(m.E[0] - d.E[0]) <= 1e-5 * d.E[0]);
-    CHECK(driftM <= 1.1 * driftD + 1e-5);
-    CHECK(apart <= 1e-4);
+    CHECK(driftM <= 1.01 * driftD + 1e-5);  // both about 1.7e-3 (semi-implicit Euler's oscillation)
+    CHECK(apart <= 1e-5);  // measured 1.2e-6 (HEML) and 6.6e-7 (TLED)
     WARN(ff << ": energy drift over 4,000 steps double " << driftD << ", mixed " << driftM << ", largest difference " << apart);
 }
