@@ -298,7 +298,15 @@ int TeamChoice::choose() {
 void TeamChoice::record(int t, double s) {
     seconds[t][count[t] % kKeep] = s;
     ++count[t];
-    if (t == current || probing == 0 || --probing > 0) return;
+    if (t == current) {
+        // a collapsed step of the team (another process took a core back): probe at once
+        if (t == 1 && probing == 0 && count[0] > 0 && s > 2 * mean(0)) nextProbe = std::min(nextProbe, step + 1);
+        return;
+    }
+    if (probing == 0) return;
+    // a probe step twice as slow as the current team's steps: no need for the rest of the probe
+    if (count[t] == 1 && s > 2 * mean(current)) probing = 1;
+    if (--probing > 0) return;
     // the end of a probe: switch when the other team's recent steps are 10 % faster on average
     if (mean(t) < 0.9 * mean(current)) {
         current = t;

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <string>
 #include <thread>
+#include <vector>
 #include <algorithm>
 #include <cmath>
 
@@ -138,7 +139,7 @@ TEST_CASE("the threaded step's team falls back to one thread when its steps are 
         ++steps;
     }
     CHECK(t.current == 0);
-    CHECK(steps == 15 + fascia::core::TeamChoice::kProbe);
+    CHECK(steps == fascia::core::TeamChoice::kFirstProbe - 1 + fascia::core::TeamChoice::kProbe);
     // the load goes: all threads now take 0.4 ms, and a later probe switches back
     steps = 0;
     while (t.current == 0 && steps < 200) {
@@ -154,4 +155,40 @@ TEST_CASE("the threaded step's team falls back to one thread when its steps are 
     }
     CHECK(t.current == 1);
     CHECK(t.interval == 1024);
+}
+
+TEST_CASE("the threaded step's team cuts a probe short that is twice as slow, and probes at once after a collapsed step",
+          "[threaded]") {
+    using fascia::core::TeamChoice;
+    TeamChoice t;
+    // a quiet machine: all threads 0.5 ms, one thread 1.2 ms; each probe runs one step only
+    std::vector<int> teams;
+    for (int k = 0; k < 200; ++k) {
+        const int team = t.choose();
+        teams.push_back(team);
+        t.record(team, team == 1 ? 0.5e-3 : 1.2e-3);
+    }
+    CHECK(t.current == 1);
+    int oneThread = 0;
+    for (size_t k = 0; k < teams.size(); ++k)
+        if (teams[k] == 0) {
+            ++oneThread;
+            CHECK((k + 1 == teams.size() || teams[k + 1] == 1));  // never two probe steps in a row
+        }
+    CHECK(teams[TeamChoice::kFirstProbe - 1] == 0);  // the first probe, early
+    CHECK(oneThread >= 3);
+    CHECK(oneThread <= 6);  // steps 4, 36, 100: the interval doubling
+    // the load comes back: one step of all threads takes 10 ms; the next step is a probe, it is
+    // faster (one thread 1.2 ms), and the team switches after kProbe steps
+    const long before = t.step;
+    CHECK(t.choose() == 1);
+    t.record(1, 10e-3);
+    int switched = -1;
+    for (int k = 0; k < 10 && switched < 0; ++k) {
+        const int team = t.choose();
+        CHECK(team == 0);
+        t.record(team, 1.2e-3);
+        if (t.current == 0) switched = int(t.step - before);
+    }
+    CHECK(switched == 1 + TeamChoice::kProbe);
 }

@@ -252,12 +252,17 @@ protected:
 /// results are bitwise the same either way (principle 5), so switching costs nothing but the probes:
 /// every `interval` steps it runs kProbe steps on the other team, and switches when the mean of
 /// those steps is 10 % below the mean of the current team's recent steps; the interval doubles (up to 1,024 steps) while the choice stands.
+/// Three things keep a loaded run from paying for many slow steps before it switches: the first
+/// probe comes after kFirstProbe steps; a probe whose first step takes twice the current team's
+/// mean ends there (the other team is clearly slower); and a step of the current team (all
+/// threads) that takes more than twice the mean of the last one-thread steps brings the next probe
+/// forward to the next step (the load came back).
 struct TeamChoice {
-    static constexpr int kKeep = 8, kProbe = 3;
+    static constexpr int kKeep = 8, kProbe = 3, kFirstProbe = 4;
     double seconds[2][kKeep] = {};  ///< recent step times (s) per team: [0] one thread, [1] all
     int count[2] = {0, 0};          ///< samples recorded per team (the ring holds the last kKeep)
     int current = 1;                ///< the team of ordinary steps
-    long step = 0, nextProbe = 16, interval = 16;
+    long step = 0, nextProbe = kFirstProbe, interval = 16;
     int probing = 0;                ///< probe steps left
     /// The team of the next step: 0 one thread, 1 all.
     int choose();
