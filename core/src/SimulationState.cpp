@@ -288,11 +288,19 @@ void Simulation::setSnapshotEvery(long steps) {
 
 void Simulation::takeSnapshot() {
     StateWriter w;
-    if (m_snapshots.size() >= kSnapshotsKept) {
+    const bool reuse = m_snapshots.size() >= kSnapshotsKept;
+    if (reuse) {
         w.bytes().swap(m_snapshots.front().second);  // reuses the oldest one's memory
         m_snapshots.pop_front();
     }
     w.clear();
+    if (!reuse) {
+        // no buffer to reuse yet: allocate it at its size at once (a growing buffer is copied at
+        // each growth, the old and the new one held together: a transient of a large state's size)
+        StateWriter count(StateWriter::CountOnly{});
+        writeState(count, false);
+        w.bytes().reserve(count.size());
+    }
     writeState(w, false);
     m_snapshots.emplace_back(m_step, std::string());
     m_snapshots.back().second.swap(w.bytes());

@@ -57,6 +57,10 @@ std::uint64_t hashBytes(const void* data, size_t size, std::uint64_t seed) {
 }
 
 void StateWriter::putRaw(const std::string& name, RecordType type, const void* data, size_t count, size_t width) {
+    if (m_countOnly) {  // the bytes below: marker, name length and name, type, count, values
+        m_counted += 1 + 2 + name.size() + 1 + 8 + count * width;
+        return;
+    }
     m_bytes.push_back(kRecord);
     append<std::uint16_t>(m_bytes, std::uint16_t(name.size()));
     m_bytes += name;
@@ -66,6 +70,10 @@ void StateWriter::putRaw(const std::string& name, RecordType type, const void* d
 }
 
 void StateWriter::beginSection(const std::string& path, const std::string& className) {
+    if (m_countOnly) {  // marker, path, class, section length (endSection then has nothing to patch)
+        m_counted += 1 + 4 + path.size() + 4 + className.size() + 8;
+        return;
+    }
     m_bytes.push_back(kSection);
     append<std::uint32_t>(m_bytes, std::uint32_t(path.size()));
     m_bytes += path;

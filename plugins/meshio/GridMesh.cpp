@@ -23,6 +23,9 @@ MeshData makeGrid(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz, const 
     const int sx = nx + 1, sy = ny + 1, sz = nz + 1;
     auto id = [&](int i, int j, int k) { return i + sx * (j + sy * k); };
     m.points.resize(size_t(sx) * sy * sz);
+    const size_t cells = size_t(nx) * ny * nz;
+    if (element == "hexahedra") m.hexahedra.reserve(cells);
+    else m.tetrahedra.reserve((element == "tetrahedra6" ? 6 : 5) * cells);
     for (int k = 0; k < sz; ++k)
         for (int j = 0; j < sy; ++j)
             for (int i = 0; i < sx; ++i)

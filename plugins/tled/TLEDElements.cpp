@@ -57,10 +57,11 @@ void ElementSet<NN>::finish(const std::vector<std::pair<size_t, size_t>>& batche
         pack.assign(n, 0.0);
         packRows(*this, batches, fibres, pack.data());
     }
-    dN = {};
-    hgC = {};
-    a0 = {};
-    b0 = {};
+    // swap with empty vectors: "= {}" assigns an empty list and keeps the capacity (the AoS arrays stayed allocated)
+    std::vector<double>().swap(dN);
+    std::vector<double>().swap(hgC);
+    std::vector<double>().swap(a0);
+    std::vector<double>().swap(b0);
 }
 template struct ElementSet<4>;
 template struct ElementSet<8>;
@@ -317,6 +318,20 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
             if (g.uses & BaseMaterial::UsesI6) unit(1, g.b0);
         }
 
+    // the element arrays at their exact sizes (push_back alone would leave up to twice their size allocated)
+    const auto reserveSet = [&](auto& s, size_t n, size_t nn) {
+        s.nodes.reserve(nn * n);
+        s.dN.reserve(3 * nn * n);
+        s.vol.reserve(n);
+        s.orig.reserve(n);
+        s.length.reserve(n);
+        if (im.fibresPerElement && su.fibA.used) s.a0.reserve(3 * n);
+        if (im.fibresPerElement && su.fibB.used) s.b0.reserve(3 * n);
+    };
+    reserveSet(im.tet, nT, 4);
+    reserveSet(im.hex, nH, 8);
+    im.hex.hgC.reserve(12 * nH);
+    im.hex.hgK.reserve(nH);
     // element data: tetrahedra by group, then hexahedra by group; fixed blocks within each group
     for (int kind = 0; kind < 2; ++kind)
         for (size_t gi = 0; gi < im.groups.size(); ++gi) {

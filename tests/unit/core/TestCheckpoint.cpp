@@ -127,6 +127,28 @@ TEST_CASE("Records read back by name and size, and a mismatch names the record",
     }
 }
 
+TEST_CASE("A counting writer counts the bytes the records take and writes none", "[StateWriter]") {
+    StateWriter w, c(StateWriter::CountOnly{});
+    for (StateWriter* x : {&w, &c}) {
+        x->beginSection("/root/a", "Thing");
+        x->put("t", 1.5);
+        x->put("n", 7L);
+        x->put("on", true);
+        x->put("label", std::string("abc"));
+        const double v[3] = {1, 2, 3};
+        x->put("v", v, 3);
+        x->put("none", v, 0);
+        x->endSection();
+        x->beginSection("/root/b", "Other");
+        x->endSection();
+    }
+    CHECK(c.size() == w.bytes().size());
+    CHECK(w.size() == w.bytes().size());
+    CHECK(c.bytes().empty());
+    c.clear();
+    CHECK(c.size() == 0);
+}
+
 TEST_CASE("The hash of bytes changes with any one byte", "[StateWriter]") {
     std::string s(37, 'a');
     const auto h = hashBytes(s.data(), s.size());

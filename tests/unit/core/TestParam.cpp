@@ -283,6 +283,24 @@ TEST_CASE("A data link reads the source's current value", "[Param]") {
     CHECK(src.nl.get().size() == 4);
 }
 
+TEST_CASE("A view reads a value kept elsewhere, and a link through it too, until the next set", "[Param]") {
+    Holder src, dst;
+    NumberList kept{1, 2, 3};
+    src.nl.view(&kept);
+    CHECK(src.nl.isSet());
+    CHECK(&src.nl.get() == &kept);
+    dst.nl.bindTo(&src.nl);
+    kept.push_back(4);
+    CHECK(dst.nl.get() == NumberList{1, 2, 3, 4});
+    src.nl.set({9});
+    CHECK(dst.nl.get() == NumberList{9});
+    CHECK(kept.size() == 4);
+    src.nl.view(&kept);
+    src.nl.edit() = {7};  // edit() ends the view too, on the parameter's own value
+    CHECK(src.nl.get() == NumberList{7});
+    CHECK(kept.size() == 4);
+}
+
 TEST_CASE("File paths are resolved relative to the scene file's folder", "[Param]") {
     struct Case { const char *file, *written, *resolved; };
     auto c = GENERATE(values<Case>({

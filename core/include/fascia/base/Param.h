@@ -137,13 +137,17 @@ public:
     Param(Base* owner, ParamSpec spec, T defaultValue = zeroValue<T>())
         : BaseParam(owner, std::move(spec)), m_value(defaultValue), m_default(std::move(defaultValue)) {}
 
-    const T& get() const { return m_source ? m_source->get() : m_value; }
+    const T& get() const { return m_source ? m_source->get() : m_view ? *m_view : m_value; }
     const T& operator*() const { return get(); }
     const T* operator->() const { return &get(); }
     /// Sets the value from code (a component filling its outputs, or an embedding program).
-    void set(T v) { m_value = std::move(v); m_source = nullptr; markSet(); }
+    void set(T v) { m_value = std::move(v); m_source = nullptr; m_view = nullptr; markSet(); }
     /// Direct write access for outputs filled in place.
-    T& edit() { m_source = nullptr; markSet(); return m_value; }
+    T& edit() { m_source = nullptr; m_view = nullptr; markSet(); return m_value; }
+    /// Makes an output read its value from an object its component keeps elsewhere, without a copy
+    /// (a mesh source's "tetrahedra" is the tetrahedra of its "mesh"): get() returns *v until the
+    /// next set() or edit(). v must outlive the parameter.
+    void view(const T* v) { m_value = zeroValue<T>(); m_source = nullptr; m_view = v; markSet(); }
 
     std::string typeName() const override { return ParamTraits<T>::typeName(); }
     std::string defaultText() const override { return ParamTraits<T>::format(m_default); }
@@ -168,6 +172,7 @@ protected:
         }
         m_value = std::move(v);
         m_source = nullptr;
+        m_view = nullptr;
     }
     std::string rangeProblem() const override { return ParamTraits<T>::check(get(), m_spec); }
 
@@ -176,6 +181,7 @@ private:
     T m_value;
     T m_default;
     const Param<T>* m_source = nullptr;
+    const T* m_view = nullptr;  ///< view(): the value kept elsewhere
 };
 
 /// Resolves a path written in a scene relative to the scene file's folder.

@@ -24,6 +24,13 @@ std::uint64_t hashBytes(const void* data, size_t size, std::uint64_t seed = 0x5a
 /// wrote it; Simulation::save records the byte order and restore checks it).
 class StateWriter {
 public:
+    StateWriter() = default;
+    /// A writer that only counts: size() is the bytes the records would take, bytes() stays empty
+    /// (to reserve a buffer at its final size before writing, instead of growing it record by record).
+    struct CountOnly {};
+    explicit StateWriter(CountOnly) : m_countOnly(true) {}
+    /// Bytes written (counted, for a counting writer).
+    size_t size() const { return m_countOnly ? m_counted : m_bytes.size(); }
     void put(const std::string& name, double v) { putRaw(name, RecordType::Float64, &v, 1, sizeof v); }
     void put(const std::string& name, long v) {
         const std::int64_t w = v;
@@ -48,12 +55,17 @@ public:
     void endSection();
     const std::string& bytes() const { return m_bytes; }
     std::string& bytes() { return m_bytes; }
-    void clear() { m_bytes.clear(); }
+    void clear() {
+        m_bytes.clear();
+        m_counted = 0;
+    }
 
 private:
     void putRaw(const std::string& name, RecordType type, const void* data, size_t count, size_t width);
     std::string m_bytes;
     size_t m_sectionLength = 0;  ///< where the open section's length goes (0: none open)
+    bool m_countOnly = false;
+    size_t m_counted = 0;  ///< counting writer: the bytes so far
 };
 
 /// Reads the records a StateWriter wrote. Every failure throws an input error (exit 2) located at
