@@ -1,7 +1,8 @@
 # Runs fascia-bench (FASCIA_BENCH) on a small TLED hexahedral cube of two element blocks: it must exit
 # with 0 and print its JSON line with the step, single-step and force-field-alone figures and the
 # bytes of the layout, and the 1- and 2-thread positions must agree. Then a tetrahedral cube with
-# the reference kernel beside TLED and the competitor of --contend. A smoke test, not a timing.
+# the reference kernel beside TLED and the competitor of --contend, and both force fields in mixed
+# precision. A smoke test, not a timing.
 
 # runs fascia-bench with the arguments after `regex` and fails unless it exits with 0 and its
 # output matches regex
@@ -20,3 +21,14 @@ bench_matches("\"elements\": 729, .*\"median_step_ms\": [0-9.]+, \"p90_step_ms\"
 
 bench_matches("^{\"forcefield\": \"reference\", \"material\": \"NeoHookean\", .*\"elements\": 384, .*\"contend\": true, \"contend_core\": -?[0-9]+, \"contend_cpu_s\": [0-9.]+}\n{\"forcefield\": \"TLED\", .*\"elements\": 384, .*\"step_time_vs_first\": [0-9.]+, .*\"contend\": true"
   --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 2 --reference --contend)
+
+# --precision mixed reaches the force field (both), and the 1- and 2-thread positions still agree
+bench_matches("\"forcefield\": \"HEML\", .*\"precision\": \"mixed\", .*\"bitwise_identical_1_vs_2_threads\": true}"
+  --forcefield HEML --cube 6 --steps 3 --repeat 1 --precision mixed --determinism)
+bench_matches("\"forcefield\": \"TLED\", .*\"precision\": \"mixed\", .*\"bitwise_identical_1_vs_2_threads\": true}"
+  --forcefield TLED --material NeoHookean --cube 6 --steps 3 --repeat 1 --precision mixed --determinism)
+# an unknown precision is refused
+execute_process(COMMAND ${FASCIA_BENCH} --precision single RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(rc EQUAL 0 OR NOT err MATCHES "--precision is double or mixed")
+  message(FATAL_ERROR "fascia-bench --precision single: exit ${rc}, ${err}")
+endif()
