@@ -448,7 +448,7 @@ void runKernel(const Impl& im, const Block& b, const Eval& eval, const KernelIO&
                 uniformFibre[c][k] = static_cast<T>(grp.a0[c]);
                 uniformFibre[3 + c][k] = static_cast<T>(grp.b0[c]);
             }
-    const bool packFibres = im.fibresPerElement && es.rows > ElementSet<NN>::kFibreRow;
+    const bool packFibres = im.fibresPerElement && es.rows - (es.volRow >= 0 ? 1 : 0) > ElementSet<NN>::kFibreRow;  // (mixed: + the volume row)
     Batch<NN, T> s;
     double energy = 0;
     for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) {
