@@ -45,7 +45,7 @@ struct ElementSet {
     static constexpr int kFibreRow = NN == 8 ? kDnRows + 12 : kDnRows;  ///< a0 x y z, then b0 x y z
 
     std::vector<int> nodes;     ///< NN per element (AoS)
-    std::vector<double> dN;     ///< AoS dN_a/dX, 3 per node (emptied by finish())
+    std::vector<double> dN;     ///< AoS dN_a/dX, kDnRows per element (tetrahedra: nodes 1-3; emptied by finish())
     std::vector<double> vol;    ///< rest volume (m^3)
     std::vector<double> a0, b0; ///< AoS fibre directions per element (only with a fibre array; emptied by finish())
     std::vector<int> orig;      ///< index in the input list of its kind

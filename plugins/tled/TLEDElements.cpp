@@ -30,7 +30,7 @@ void packRows(const ElementSet<NN>& es, const std::vector<std::pair<size_t, size
         for (size_t k = 0; k < batches[m].second; ++k) {
             const size_t e = batches[m].first + k;
             for (int r = 0; r < ES::kDnRows; ++r)
-                P[r * kBatch + k] = static_cast<T>(es.dN[e * 3 * NN + (NN == 4 ? 3 : 0) + static_cast<size_t>(r)]);
+                P[r * kBatch + k] = static_cast<T>(es.dN[e * ES::kDnRows + static_cast<size_t>(r)]);
             if constexpr (NN == 8)
                 for (int r = 0; r < 12; ++r) P[(ES::kHgRow + r) * kBatch + k] = static_cast<T>(es.hgC[e * 12 + static_cast<size_t>(r)]);
             for (int c = 0; c < 3 && fibres; ++c) {
@@ -200,15 +200,12 @@ void fillTets(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi) {
             ff.fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
                     std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate (volume " + fmt(det / 6) + " m^3)");
         const Mat3 Di = D.inverse();
-        double dN[12];
-        for (int j = 0; j < 3; ++j) {
-            dN[3 + j] = Di(0, j);
-            dN[6 + j] = Di(1, j);
-            dN[9 + j] = Di(2, j);
-            dN[j] = -(Di(0, j) + Di(1, j) + Di(2, j));
-        }
+        // dN_1..dN_3 = the rows of D^-1 (dN_0 = -(dN_1 + dN_2 + dN_3) is not stored: the kernel forms it)
+        double dN[9];
+        for (int a = 0; a < 3; ++a)
+            for (int j = 0; j < 3; ++j) dN[3 * a + j] = Di(a, j);
         for (int a = 0; a < 4; ++a) s.nodes.push_back(su.internalOf[static_cast<size_t>(t[a])]);
-        s.dN.insert(s.dN.end(), dN, dN + 12);
+        s.dN.insert(s.dN.end(), dN, dN + 9);
         const double V = std::abs(det) / 6;
         s.vol.push_back(V);
         s.orig.push_back(static_cast<int>(e));
@@ -321,7 +318,7 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
     // the element arrays at their exact sizes (push_back alone would leave up to twice their size allocated)
     const auto reserveSet = [&](auto& s, size_t n, size_t nn) {
         s.nodes.reserve(nn * n);
-        s.dN.reserve(3 * nn * n);
+        s.dN.reserve(ElementSet<4>::kDnRows * n * (nn == 4 ? 1 : 0) + ElementSet<8>::kDnRows * n * (nn == 8 ? 1 : 0));
         s.vol.reserve(n);
         s.orig.reserve(n);
         s.length.reserve(n);
