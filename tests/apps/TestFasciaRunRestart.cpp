@@ -179,7 +179,12 @@ TEST_CASE("A diverging fascia-run exits 3 and leaves the state before the growth
     CAPTURE(named);
     Workspace w;
     const std::string stable = cube("HEMLForceField", "SemiImplicitEuler", true);
-    const double crit = fascia::core::Simulation::fromString(stable)->criticalTimeStep();
+    // the in-process runs write into a folder of the workspace, not the build folder (where two
+    // tests at once raced on vtk.pvd)
+    fascia::core::LoadOptions inWorkspace;
+    inWorkspace.outputDir = (w.dir() / "inproc").string();
+    fs::create_directories(inWorkspace.outputDir);
+    const double crit = fascia::core::Simulation::fromString(stable, "<string>", ".", inWorkspace)->criticalTimeStep();
     std::ostringstream dt;
     dt.precision(17);
     dt << 3 * crit;
@@ -201,9 +206,9 @@ TEST_CASE("A diverging fascia-run exits 3 and leaves the state before the growth
                           Contains("is in '" + (named ? file : "out/diverged.ckpt") + "'"));
     REQUIRE(fs::exists(w.dir() / file));
     // the checkpoint is the state of a run straight to the step before
-    auto straight = fascia::core::Simulation::fromString(xml);
+    auto straight = fascia::core::Simulation::fromString(xml, "<string>", ".", inWorkspace);
     straight->run(good);
-    auto restored = fascia::core::Simulation::fromString(xml);
+    auto restored = fascia::core::Simulation::fromString(xml, "<string>", ".", inWorkspace);
     restored->restore((w.dir() / file).string());
     CHECK(restored->stepCount() == good);
     CHECK(sameBits(restored->state("state").x(), straight->state("state").x()));
