@@ -312,7 +312,8 @@ void TeamChoice::record(int t, double s) {
         current = t;
         interval = 16;
     } else {
-        interval = std::min(2 * interval, 1024L);
+        // a probe 3 times slower (a collapsed team, most likely): the next one much later
+        interval = std::min((mean(t) > 3 * mean(current) ? 4 : 2) * interval, 1024L);
     }
     nextProbe = step + interval;
 }

@@ -191,4 +191,11 @@ TEST_CASE("the threaded step's team cuts a probe short that is twice as slow, an
         if (t.current == 0) switched = int(t.step - before);
     }
     CHECK(switched == 1 + TeamChoice::kProbe);
+    // a probe 4 times slower than the team: the interval grows 4 times (16 -> 64), not 2
+    TeamChoice q;
+    for (int k = 0; k < TeamChoice::kFirstProbe; ++k) {
+        const int team = q.choose();
+        q.record(team, team == 1 ? 0.5e-3 : 2e-3);
+    }
+    CHECK(q.interval == 64);
 }

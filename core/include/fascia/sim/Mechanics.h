@@ -256,7 +256,8 @@ protected:
 /// probe comes after kFirstProbe steps; a probe whose first step takes twice the current team's
 /// mean ends there (the other team is clearly slower); and a step of the current team (all
 /// threads) that takes more than twice the mean of the last one-thread steps brings the next probe
-/// forward to the next step (the load came back).
+/// forward to the next step (the load came back). After a probe 3 times slower than the current
+/// team the interval grows 4 times instead of 2 (each such probe step costs milliseconds).
 struct TeamChoice {
     static constexpr int kKeep = 8, kProbe = 3, kFirstProbe = 4;
     double seconds[2][kKeep] = {};  ///< recent step times (s) per team: [0] one thread, [1] all
