@@ -318,7 +318,7 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
     // the element arrays at their exact sizes (push_back alone would leave up to twice their size allocated)
     const auto reserveSet = [&](auto& s, size_t n, size_t nn) {
         s.nodes.reserve(nn * n);
-        s.dN.reserve(ElementSet<4>::kDnRows * n * (nn == 4 ? 1 : 0) + ElementSet<8>::kDnRows * n * (nn == 8 ? 1 : 0));
+        s.dN.reserve(std::decay_t<decltype(s)>::kDnRows * n);
         s.vol.reserve(n);
         s.orig.reserve(n);
         s.length.reserve(n);
