@@ -74,7 +74,8 @@ std::string sceneXml(const Case& c) {
       << "    <LumpedMass density=\"1000\"/>\n"
       << "    " << materialXml(c.material) << "\n"
       << "    <" << c.forcefield << "ForceField name=\"ff\""
-      << (c.precision == "double" ? "" : " precision=\"" + c.precision + "\"") << "/>\n";
+      << (c.precision == "double" ? "" : " precision=\"" + c.precision + "\"")
+      << (c.nodeBuffers.empty() || c.forcefield != "TLED" ? "" : " nodeBuffers=\"" + c.nodeBuffers + "\"") << "/>\n";
     if (c.viscous) s << "    <ViscoelasticProny alpha=\"0.5\" tau=\"0.58\"/>\n";
     s << "    <SemiImplicitEuler/>\n"
       << "    <BoxROI name=\"base\" box=\"-1e9 -1e9 -1e9 1e9 1e9 " << (c.mesh.empty() ? "0.001" : "-0.04") << "\"/>\n"

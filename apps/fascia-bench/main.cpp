@@ -23,7 +23,8 @@ const char* kHelp = R"(fascia-bench: time full explicit steps of a force field
 usage:
   fascia-bench [--forcefield HEML|TLED] [--material NAME] [--mesh FILE | --cube N]
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
-               [--viscous] [--precision double|mixed] [--determinism] [--reference] [--contend]
+               [--viscous] [--precision double|mixed] [--node-buffers auto|range|compact]
+               [--determinism] [--reference] [--contend]
   fascia-bench --suite [NAME] [--steps N] [--repeat R] [--reference] [--contend] [--cubes LIST]
   fascia-bench --overhead N [--steps N] [--repeat R]
   fascia-bench --load SCENE.xml [--repeat R]
@@ -40,6 +41,8 @@ usage:
   --viscous       add a one-term ViscoelasticProny to the force field's node
   --precision P   the force field's precision: double (default) or mixed (element data and loop
                   in float, nodes and sums in double)
+  --node-buffers L  TLED's block force buffers: auto (default), range (each block's node range)
+                  or compact (one row per node of the block); with --suite, every TLED case
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
@@ -48,7 +51,7 @@ usage:
                   this process may use, pinned where allowed), as a render or haptic thread would;
                   it is killed after the timing and the --determinism runs (and with the bench,
                   on any exit or signal)
-  --suite [heml|tled|scaling|large|contact]
+  --suite [heml|tled|scaling|large|buffers|contact]
                   the standard sets of docs/performance.md: heml (default: HEML compressible
                   neo-Hookean and Saint Venant-Kirchhoff on the 4.4k and 21k organ meshes and a
                   2M-tetrahedron cube, 1 and 2 threads), tled (TLED neo-Hookean, transversely
@@ -61,7 +64,9 @@ usage:
                   tetrahedra; the 2M line holds seven copies of the mesh: several GB), contact
                   (HEML and TLED on the 21k organ mesh without a tool, with a capsule pressed into
                   it and moving every step, and with the same capsule as a 10k-triangle
-                  SurfaceTool)
+                  SurfaceTool), buffers (TLED's two layouts of the block
+                  buffers, range and compact, in double and mixed on 2 threads, on the large
+                  suite's cubes)
   --cubes LIST    the large suite's sizes as cube cells per side, e.g. 15,32 (default 15,32,50,70)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
@@ -244,6 +249,29 @@ void suiteLarge(const Case& c, const SuiteOptions& o) {
     }
 }
 
+/// TLED's two layouts of the block buffers (nodeBuffers) side by side: per size, range then compact,
+/// in double and in mixed, 2 threads, on the large suite's cubes.
+void suiteBuffers(const Case& c, const SuiteOptions& o) {
+    const std::vector<int> all = {15, 32, 50, 70};
+    for (int cube : o.cubes.empty() ? all : o.cubes) {
+        std::vector<Case> line;
+        for (const char* precision : {"double", "mixed"})
+            for (const char* layout : {"range", "compact"}) {
+                Case s = sideBySide(c, "TLED");
+                s.mesh.clear();
+                s.cube = cube;
+                s.element = "tetrahedra6";
+                s.threads = 2;
+                s.precision = precision;
+                s.nodeBuffers = layout;
+                s.steps = cube <= 15 ? c.steps : std::min(c.steps, cube <= 32 ? 100 : cube <= 50 ? 40 : 20);
+                if (cube > 32) s.repeat = std::min(c.repeat, 3);
+                line.push_back(s);
+            }
+        runCases(line);
+    }
+}
+
 void suiteHeml(const Case& c, const SuiteOptions& o) {
     for (const char* mat : {"CompressibleNeoHookean", "StVenantKirchhoff"})
         for (const std::string mesh : {"organ_4430.msh", "organ_21436.msh", "cube70"})
@@ -269,9 +297,10 @@ int runSuite(const std::string& name, const Case& c, const SuiteOptions& o) {
     else if (name == "scaling") suiteScaling(c, o);
     else if (name == "large") suiteLarge(c, o);
     else if (name == "heml") suiteHeml(c, o);
+    else if (name == "buffers") suiteBuffers(c, o);
     else if (name == "contact") runContactSuite(c);
     else {
-        std::cerr << "fascia-bench: unknown suite '" << name << "' (heml, tled, scaling, large or contact)\n";
+        std::cerr << "fascia-bench: unknown suite '" << name << "' (heml, tled, scaling, large, buffers or contact)\n";
         return 1;
     }
     return 0;
@@ -321,6 +350,7 @@ int main(int argc, char** argv) {
         else if (a == "--repeat") c.repeat = parseInt(next(), "--repeat");
         else if (a == "--viscous") c.viscous = true;
         else if (a == "--precision") c.precision = str("--precision");
+        else if (a == "--node-buffers") c.nodeBuffers = str("--node-buffers");
         else if (a == "--determinism") c.determinism = true;
         else if (a == "--contend") c.contend = true;
         else if (a == "--scene") printScene = true;
@@ -343,6 +373,10 @@ int main(int argc, char** argv) {
     }
     if (c.precision != "double" && c.precision != "mixed") {
         std::cerr << "fascia-bench: --precision is double or mixed\n";
+        return 1;
+    }
+    if (!c.nodeBuffers.empty() && c.nodeBuffers != "auto" && c.nodeBuffers != "range" && c.nodeBuffers != "compact") {
+        std::cerr << "fascia-bench: --node-buffers is auto, range or compact\n";
         return 1;
     }
     try {

@@ -71,19 +71,26 @@ void BlockBuffers::sumRange(double* fp, long lo, long hi) {
         }
         return;
     }
-    // the tile [lo, hi) of node rows: every block that covers part of it, in block order
-    const int a0 = static_cast<int>(lo), z0 = static_cast<int>(std::min<long>(hi, static_cast<long>(m_nodes))) - 1;
-    double* __restrict sum = fp + 3 * static_cast<size_t>(lo);
-    for (size_t b = 0; b < m_lo.size(); ++b) {
-        const int a = std::max(a0, m_lo[b]), z = std::min(z0, m_hi[b]);
-        if (a > z) continue;
-        double* __restrict src = m_buf.data() + m_offset[b] + 4 * static_cast<size_t>(a - m_lo[b]);
-        double* __restrict dst = sum + 3 * static_cast<size_t>(a - a0);
-        const size_t rows = static_cast<size_t>(z - a + 1);
-        for (size_t k = 0; k < rows; ++k)
-            for (size_t c = 0; c < 3; ++c) dst[3 * k + c] += src[4 * k + c];
-        // cleared while in the cache, for the next evaluation
-        std::fill(src, src + 4 * rows, 0.0);
+    // tiles of node rows: every block that covers part of one, in block order, summed from 0 and
+    // the total added to f (the same bits as the renumbered path and as CompactBlockBuffers)
+    hi = std::min(hi, static_cast<long>(m_nodes));
+    for (long t0 = lo; t0 < hi; t0 += kNodeTile) {
+        const int a0 = static_cast<int>(t0), z0 = static_cast<int>(std::min(hi, t0 + kNodeTile)) - 1;
+        alignas(64) double sum[3 * kNodeTile];
+        std::fill(sum, sum + 3 * static_cast<size_t>(z0 - a0 + 1), 0.0);
+        for (size_t b = 0; b < m_lo.size(); ++b) {
+            const int a = std::max(a0, m_lo[b]), z = std::min(z0, m_hi[b]);
+            if (a > z) continue;
+            double* __restrict src = m_buf.data() + m_offset[b] + 4 * static_cast<size_t>(a - m_lo[b]);
+            double* __restrict dst = sum + 3 * static_cast<size_t>(a - a0);
+            const size_t rows = static_cast<size_t>(z - a + 1);
+            for (size_t k = 0; k < rows; ++k)
+                for (size_t c = 0; c < 3; ++c) dst[3 * k + c] += src[4 * k + c];
+            // cleared while in the cache, for the next evaluation
+            std::fill(src, src + 4 * rows, 0.0);
+        }
+        double* __restrict out = fp + 3 * static_cast<size_t>(a0);
+        for (size_t k = 0; k < 3 * static_cast<size_t>(z0 - a0 + 1); ++k) out[k] += sum[k];
     }
 }
 
@@ -108,7 +115,7 @@ size_t CompactBlockBuffers::addBlock(std::initializer_list<Nodes> parts) {
     return m_rowStart.size() - 2;
 }
 
-void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
+void CompactBlockBuffers::finish(std::vector<int> nodeOf, Source source) {
     m_nodeOf = std::move(nodeOf);
     const size_t n = m_nodeOf.size(), rows = m_rowInternal.size();
     int maxState = -1;
@@ -117,8 +124,9 @@ void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
     for (size_t p = 0; p < n; ++p) m_internalOf[size_t(m_nodeOf[p])] = int(p);
     m_rowNode.resize(rows);
     for (size_t r = 0; r < rows; ++r) m_rowNode[r] = m_nodeOf[static_cast<size_t>(m_rowInternal[r])];
-    m_directGather = n * 3 * sizeof(double) <= (size_t(1) << 19);
-    m_xin.assign(4 * n, 0.0);
+    m_directGather = source == Source::Auto && n * 3 * sizeof(double) <= (size_t(1) << 19);
+    m_ownCopy = source == Source::Auto && !m_directGather;
+    m_xin.assign(m_ownCopy ? 4 * n : 0, 0.0);
     m_xrow.assign(4 * rows, 0.0);
     m_buf.assign(4 * rows, 0.0);
     // per node, its rows; rows ascend with the block index, so each list is in block order
@@ -131,7 +139,7 @@ void CompactBlockBuffers::finish(std::vector<int> nodeOf) {
 }
 
 const double* CompactBlockBuffers::positionsIn(const double* x) {
-    if (m_directGather) return x;
+    if (!m_ownCopy) return x;
     const long n = static_cast<long>(m_nodeOf.size());
     const long nTiles = (n + kNodeTile - 1) / kNodeTile;
 #pragma omp for schedule(dynamic, 1)
@@ -140,7 +148,7 @@ const double* CompactBlockBuffers::positionsIn(const double* x) {
 }
 
 void CompactBlockBuffers::positionsRange(const double* x, long lo, long hi) {
-    if (m_directGather) return;
+    if (!m_ownCopy) return;
     for (long p = lo; p < hi; ++p) {
         const double* s = x + 3 * size_t(m_nodeOf[size_t(p)]);
         double* q = m_xin.data() + 4 * size_t(p);
@@ -183,8 +191,9 @@ core::LayoutBytes CompactBlockBuffers::stepBytes() const {
     const size_t n = m_nodeOf.size();
     core::LayoutBytes b;
     // positionsIn (nodeOf, x, the copy written) and loadBlock's reads of the positions, once a node
+    // (Source::Internal: the caller's rows, which it counts)
     if (m_directGather) b.nodeRows = 3 * n * D;
-    else b.nodeRows = n * I + 3 * n * D + 2 * m_xin.size() * D;
+    else if (m_ownCopy) b.nodeRows = n * I + 3 * n * D + 2 * m_xin.size() * D;
     // the sum: the node's row lists, nodeOf, f read and written
     b.nodeRows += m_nodeRowStart.size() * I + n * I + 2 * 3 * n * D;
     // loadBlock: a row list (rowNode or rowInternal), the row positions written, the force rows

@@ -31,11 +31,13 @@ struct Block {
     size_t batchBase = 0;       ///< index of its first element batch among all blocks (viscous states)
 };
 
-/// Precomputed data of one element kind, in internal order (grouped by material). Filled element by
-/// element (AoS), then packed by finish() batch by batch: the batch in slot m (the blocks' batches
-/// in order, see Block::batchBase and batchOffset) holds its rows one after the other, row r at
-/// pack[(m rows + r) kBatch + k] for element k of the batch. A batch's data is then one contiguous
-/// stream at constant offsets from one pointer (docs/performance.md, lesson 2).
+/// Precomputed data of one element kind, in internal order (grouped by material). The rows the
+/// kernel reads are written straight into the pack, batch by batch: the batch in slot m (the blocks'
+/// batches in order, see Block::batchBase and batchOffset) holds its rows one after the other, row r
+/// at pack[(m rows + r) kBatch + k] for element k of the batch. A batch's data is then one contiguous
+/// stream at constant offsets from one pointer (docs/performance.md, lesson 2). The slots depend on
+/// the groups' sizes only, so they are known before the elements are computed, and no element-by-
+/// element copy of the rows exists beside the pack (at 2M tetrahedra it was the peak of the memory).
 template <int NN>
 struct ElementSet {
     /// rows of the pack: dN_a/dX (tetrahedra: nodes 1-3 only, dN_0 = -(dN_1 + dN_2 + dN_3)), then
@@ -44,13 +46,10 @@ struct ElementSet {
     static constexpr int kHgRow = kDnRows;                              ///< hexahedra: c_q, rows kHgRow + 3q + i
     static constexpr int kFibreRow = NN == 8 ? kDnRows + 12 : kDnRows;  ///< a0 x y z, then b0 x y z
 
-    std::vector<int> nodes;     ///< NN per element (AoS)
-    std::vector<double> dN;     ///< AoS dN_a/dX, kDnRows per element (tetrahedra: nodes 1-3; emptied by finish())
+    std::vector<int> nodes;     ///< NN per element (AoS; compact buffers: rows of the element's block)
     std::vector<double> vol;    ///< rest volume (m^3)
-    std::vector<double> a0, b0; ///< AoS fibre directions per element (only with a fibre array; emptied by finish())
     std::vector<int> orig;      ///< index in the input list of its kind
     std::vector<double> length; ///< characteristic length L_e (m)
-    std::vector<double> hgC;    ///< AoS hexahedra: c_q = sum_a h_qa X_a of the 4 hourglass base vectors h_q, 3q + i (emptied by finish())
     std::vector<double> hgK;    ///< hexahedra: hourglass stiffness K (N/m)
     simd::DVec pack;            ///< the rows above, batch by batch (precision "double")
     /// precision "mixed": the same rows in float, and one more, the rest volume (row volRow), so that
@@ -67,9 +66,15 @@ struct ElementSet {
         if constexpr (std::is_same_v<T, float>) return packF.data() + at;
         else return pack.data() + at;
     }
-    /// packs the AoS arrays (in float, with the volume row, when mixed); batches: first element and
-    /// size of every batch, in slot order
-    void finish(const std::vector<std::pair<size_t, size_t>>& batches, bool mixed);
+    /// Allocates the pack (zeroed) for `slots` batches: the rows above (fibres: with the fibre
+    /// rows), in float with the volume row when mixed.
+    void allocate(size_t slots, bool fibres, bool mixed);
+    /// Row r of element k of the batch in slot m (in float when mixed).
+    void put(size_t m, size_t k, int r, double v) {
+        const size_t at = (m * static_cast<size_t>(rows) + static_cast<size_t>(r)) * kBatch + k;
+        if (volRow >= 0) packF[at] = static_cast<float>(v);
+        else pack[at] = v;
+    }
 };
 
 /// One Prony series acting on the isochoric and/or volumetric part of S.
@@ -126,7 +131,12 @@ struct TLEDForceField::Impl {
     ElementSet<8> hex;
     std::vector<Group> groups;
     std::vector<Block> blocks;
-    elements::BlockBuffers buffers;  ///< one node buffer per block, summed in block order
+    /// one force buffer per block, summed per node in block order, in one of two layouts
+    /// (elements/BlockBuffers.h, TLEDForceField::m_nodeBuffers): node ranges (buffers), or compact
+    /// rows (rows: the elements' nodes rewritten to their block's rows, u copied in per block)
+    bool compact = false;
+    elements::BlockBuffers buffers;
+    elements::CompactBlockBuffers rows;
     std::vector<ViscoSet> visco;
     double J0 = 0.4;
     size_t nodeCount = 0;     ///< 1 + largest node index

@@ -20,48 +20,13 @@ namespace fascia::tled {
 using materials::BaseMaterial;
 using Impl = TLEDForceField::Impl;
 
-namespace {
-/// Writes the rows of ElementSet::pack (or packF, with the volume row) into P, batch by batch.
-template <int NN, class T>
-void packRows(const ElementSet<NN>& es, const std::vector<std::pair<size_t, size_t>>& batches, bool fibres, T* pack) {
-    using ES = ElementSet<NN>;
-    for (size_t m = 0; m < batches.size(); ++m) {
-        T* P = pack + m * static_cast<size_t>(es.rows) * kBatch;
-        for (size_t k = 0; k < batches[m].second; ++k) {
-            const size_t e = batches[m].first + k;
-            for (int r = 0; r < ES::kDnRows; ++r)
-                P[r * kBatch + k] = static_cast<T>(es.dN[e * ES::kDnRows + static_cast<size_t>(r)]);
-            if constexpr (NN == 8)
-                for (int r = 0; r < 12; ++r) P[(ES::kHgRow + r) * kBatch + k] = static_cast<T>(es.hgC[e * 12 + static_cast<size_t>(r)]);
-            for (int c = 0; c < 3 && fibres; ++c) {
-                P[(ES::kFibreRow + c) * kBatch + k] = static_cast<T>(es.a0.empty() ? (c == 0 ? 1.0 : 0.0) : es.a0[3 * e + static_cast<size_t>(c)]);
-                P[(ES::kFibreRow + 3 + c) * kBatch + k] = static_cast<T>(es.b0.empty() ? (c == 1 ? 1.0 : 0.0) : es.b0[3 * e + static_cast<size_t>(c)]);
-            }
-            if (es.volRow >= 0) P[es.volRow * kBatch + k] = static_cast<T>(es.vol[e]);
-        }
-    }
-}
-} // namespace
-
 template <int NN>
-void ElementSet<NN>::finish(const std::vector<std::pair<size_t, size_t>>& batches, bool mixed) {
-    if (size() == 0) return;
-    const bool fibres = !a0.empty() || !b0.empty();
+void ElementSet<NN>::allocate(size_t slots, bool fibres, bool mixed) {
     rows = kFibreRow + (fibres ? 6 : 0);
     volRow = mixed ? rows++ : -1;
-    const size_t n = batches.size() * static_cast<size_t>(rows) * kBatch;
-    if (mixed) {
-        packF.assign(n, 0.0f);
-        packRows(*this, batches, fibres, packF.data());
-    } else {
-        pack.assign(n, 0.0);
-        packRows(*this, batches, fibres, pack.data());
-    }
-    // swap with empty vectors: "= {}" assigns an empty list and keeps the capacity (the AoS arrays stayed allocated)
-    std::vector<double>().swap(dN);
-    std::vector<double>().swap(hgC);
-    std::vector<double>().swap(a0);
-    std::vector<double>().swap(b0);
+    const size_t n = slots * static_cast<size_t>(rows) * kBatch;
+    if (mixed) packF.assign(n, 0.0f);
+    else pack.assign(n, 0.0);
 }
 template struct ElementSet<4>;
 template struct ElementSet<8>;
@@ -170,24 +135,27 @@ void interleaveQuads(const Impl& im, Setup& su) {
     }
 }
 
-/// The fibre directions of an element into the AoS arrays (only with a fibre array).
+/// The fibre directions of an element into its pack rows (only with a fibre array; an unused
+/// direction as (1 0 0) or (0 1 0)).
 template <int NN>
-void pushFibres(const Impl& im, const Setup& su, const Impl::Group& g, size_t cell, ElementSet<NN>& s) {
+void putFibres(const Impl& im, const Setup& su, const Impl::Group& g, size_t cell, ElementSet<NN>& s, size_t m, size_t k) {
     if (!im.fibresPerElement) return;
-    if (su.fibA.used) {
-        const Vec3 a = (g.uses & BaseMaterial::UsesI4) ? su.fibA.dir[cell] : Vec3(1, 0, 0);
-        s.a0.insert(s.a0.end(), {a[0], a[1], a[2]});
-    }
-    if (su.fibB.used) {
-        const Vec3 b = (g.uses & BaseMaterial::UsesI6) ? su.fibB.dir[cell] : Vec3(0, 1, 0);
-        s.b0.insert(s.b0.end(), {b[0], b[1], b[2]});
+    const Vec3 a = su.fibA.used && (g.uses & BaseMaterial::UsesI4) ? su.fibA.dir[cell] : Vec3(1, 0, 0);
+    const Vec3 b = su.fibB.used && (g.uses & BaseMaterial::UsesI6) ? su.fibB.dir[cell] : Vec3(0, 1, 0);
+    for (int c = 0; c < 3; ++c) {
+        s.put(m, k, ElementSet<NN>::kFibreRow + c, a[c]);
+        s.put(m, k, ElementSet<NN>::kFibreRow + 3 + c, b[c]);
     }
 }
 
-void fillTets(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi) {
+/// The tetrahedra of group gi, appended in its internal order; their pack rows from batch slot slot0
+/// (a group's elements fill its batches in order: its blocks hold whole batches but the last).
+void fillTets(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, size_t slot0) {
     ElementSet<4>& s = im.tet;
     const Impl::Group& g = im.groups[gi];
-    for (size_t e : su.perGroup[gi]) {
+    const std::vector<size_t>& list = su.perGroup[gi];
+    for (size_t j = 0; j < list.size(); ++j) {
+        const size_t e = list[j], m = slot0 + j / kBatch, k = j % kBatch;
         const auto& t = su.tets[e];
         const Vec3 &p0 = su.X[t[0]], &p1 = su.X[t[1]], &p2 = su.X[t[2]], &p3 = su.X[t[3]];
         Mat3 D;
@@ -201,23 +169,25 @@ void fillTets(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi) {
                     std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate (volume " + fmt(det / 6) + " m^3)");
         const Mat3 Di = D.inverse();
         // dN_1..dN_3 = the rows of D^-1 (dN_0 = -(dN_1 + dN_2 + dN_3) is not stored: the kernel forms it)
-        double dN[9];
         for (int a = 0; a < 3; ++a)
-            for (int j = 0; j < 3; ++j) dN[3 * a + j] = Di(a, j);
+            for (int i = 0; i < 3; ++i) s.put(m, k, 3 * a + i, Di(a, i));
         for (int a = 0; a < 4; ++a) s.nodes.push_back(su.internalOf[static_cast<size_t>(t[a])]);
-        s.dN.insert(s.dN.end(), dN, dN + 9);
         const double V = std::abs(det) / 6;
+        if (s.volRow >= 0) s.put(m, k, s.volRow, V);
         s.vol.push_back(V);
         s.orig.push_back(static_cast<int>(e));
         s.length.push_back(elements::tetAltitude(p0, p1, p2, p3, V));
-        pushFibres(im, su, g, e, s);
+        putFibres(im, su, g, e, s, m, k);
     }
 }
 
-void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, double hourglass) {
+/// The hexahedra of group gi, as fillTets.
+void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, size_t slot0, double hourglass) {
     ElementSet<8>& s = im.hex;
     const Impl::Group& g = im.groups[gi];
-    for (size_t e : su.perGroup[gi]) {
+    const std::vector<size_t>& list = su.perGroup[gi];
+    for (size_t j = 0; j < list.size(); ++j) {
+        const size_t e = list[j], m = slot0 + j / kBatch, k = j % kBatch;
         const auto& h = su.hexes[e];
         Vec3 P[8];
         for (int a = 0; a < 8; ++a) P[a] = su.X[h[a]];
@@ -238,37 +208,91 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, d
                 for (int i = 0; i < 3; ++i) hc[3 * q + i] += elements::kHourglass[q][a] * P[a][i];
         const double absV = std::abs(V);
         for (int a = 0; a < 8; ++a) s.nodes.push_back(su.internalOf[static_cast<size_t>(h[a])]);
-        s.dN.insert(s.dN.end(), dN, dN + 24);
+        for (int r = 0; r < 24; ++r) s.put(m, k, r, dN[r]);
+        for (int r = 0; r < 12; ++r) s.put(m, k, ElementSet<8>::kHgRow + r, hc[r]);
+        if (s.volRow >= 0) s.put(m, k, s.volRow, absV);
         s.vol.push_back(absV);
         s.orig.push_back(static_cast<int>(e));
-        s.hgC.insert(s.hgC.end(), hc, hc + 12);
         s.hgK.push_back(hourglass * g.pModulus * absV * sumB2 / 8.0);
         s.length.push_back(elements::hexCharacteristicLength(P, absV));
-        pushFibres(im, su, g, su.tets.size() + e, s);
+        putFibres(im, su, g, su.tets.size() + e, s, m, k);
     }
 }
 
-/// Fixed blocks over the elements [begin, end) of one group, each with its node buffer.
+/// Fixed blocks over the elements [begin, end) of one group (internal order of its kind).
 void addBlocks(Impl& im, int kind, size_t gi, size_t begin, size_t end) {
     const size_t blockSize = kind == 0 ? kBlockTets : kBlockHexes;
-    const std::vector<int>& nodes = kind == 0 ? im.tet.nodes : im.hex.nodes;
-    const size_t nn = kind == 0 ? 4 : 8;
     for (size_t b0 = begin; b0 < end; b0 += blockSize) {
         Block b;
         b.kind = kind;
         b.group = static_cast<int>(gi);
         b.begin = b0;
         b.end = std::min(end, b0 + blockSize);
+        b.batchBase = im.batches;
+        im.batches += (b.end - b.begin + kBatch - 1) / kBatch;
+        im.blocks.push_back(b);
+    }
+}
+
+/// The range of internal nodes each block's elements use (the range layout of the buffers).
+void addNodeRanges(Impl& im) {
+    for (const Block& b : im.blocks) {
+        const size_t nn = b.kind == 0 ? 4 : 8;
+        const std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
         int lo = std::numeric_limits<int>::max(), hi = -1;
         for (size_t i = b.begin * nn; i < b.end * nn; ++i) {
             lo = std::min(lo, nodes[i]);
             hi = std::max(hi, nodes[i]);
         }
         im.buffers.addBlock(lo, hi);
-        b.batchBase = im.batches;
-        im.batches += (b.end - b.begin + kBatch - 1) / kBatch;
-        im.blocks.push_back(b);
     }
+}
+
+/// Rows of the compact layout: the distinct nodes of each block, all blocks together.
+size_t compactRows(const Impl& im) {
+    std::vector<size_t> seenIn(im.nodeCount, ~size_t(0));  // the last block that used the node
+    size_t rows = 0;
+    for (size_t bi = 0; bi < im.blocks.size(); ++bi) {
+        const Block& b = im.blocks[bi];
+        const size_t nn = b.kind == 0 ? 4 : 8;
+        const std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
+        for (size_t i = b.begin * nn; i < b.end * nn; ++i) {
+            size_t& s = seenIn[static_cast<size_t>(nodes[i])];
+            if (s != bi) ++rows, s = bi;
+        }
+    }
+    return rows;
+}
+
+/// The blocks' force buffers (TLEDForceField::m_nodeBuffers): the node ranges addBlocks recorded,
+/// or compact rows where the ranges would take more than 1.5 times as many rows. A compact row
+/// costs about 1.5 times a range row per step (the copy-in of u, the per-node row lists of the sum;
+/// docs/performance.md, issue 17, session 13).
+void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice) {
+    size_t rangeRows = 0;
+    for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += static_cast<size_t>(im.buffers.hi(b) - im.buffers.lo(b) + 1);
+    im.compact = choice == "compact" || (choice == "auto" && 2 * rangeRows > 3 * compactRows(im));
+    if (!im.compact) {
+        im.buffers.finish(im.nodeCount, im.nodeOf);
+        if (im.buffers.rows() > 16 * im.nodeCount && im.blocks.size() > 16)
+            ff.warn("the element blocks span " + std::to_string(im.buffers.rows() / im.nodeCount) +
+                    " times the node count in their force buffers, in the node order used (the file's, or a reverse "
+                    "Cuthill-McKee one when that is more than twice as compact): speed and memory suffer; "
+                    "nodeBuffers=\"compact\" does not grow with the ranges");
+        return;
+    }
+    im.buffers = elements::BlockBuffers{};
+    for (const Block& b : im.blocks) {
+        const size_t nn = b.kind == 0 ? 4 : 8;
+        std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
+        im.rows.addBlock({{nodes.data() + b.begin * nn, (b.end - b.begin) * nn}});  // rewritten to the block's rows
+    }
+    std::vector<int> nodeOf = im.nodeOf;
+    if (nodeOf.empty()) {
+        nodeOf.resize(im.nodeCount);
+        std::iota(nodeOf.begin(), nodeOf.end(), 0);
+    }
+    im.rows.finish(std::move(nodeOf), elements::CompactBlockBuffers::Source::Internal);
 }
 
 } // namespace
@@ -315,41 +339,40 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
             if (g.uses & BaseMaterial::UsesI6) unit(1, g.b0);
         }
 
+    // fixed blocks within each group (tetrahedra by group, then hexahedra by group), so the batch
+    // slots of every element are known before its data is computed
+    std::vector<size_t> slot0(im.groups.size());
+    size_t count[2] = {0, 0};
+    for (int kind = 0; kind < 2; ++kind) {
+        (kind == 0 ? im.tet.batchOffset : im.hex.batchOffset) = im.batches;
+        for (size_t gi = 0; gi < im.groups.size(); ++gi) {
+            if (im.groups[gi].kind != kind) continue;
+            slot0[gi] = im.batches - (kind == 0 ? im.tet.batchOffset : im.hex.batchOffset);
+            addBlocks(im, kind, gi, count[kind], count[kind] + su.perGroup[gi].size());
+            count[kind] += su.perGroup[gi].size();
+        }
+    }
+    const bool fibres = im.fibresPerElement;
+    im.tet.allocate(im.hex.batchOffset, fibres, im.mixed);
+    im.hex.allocate(im.batches - im.hex.batchOffset, fibres, im.mixed);
     // the element arrays at their exact sizes (push_back alone would leave up to twice their size allocated)
     const auto reserveSet = [&](auto& s, size_t n, size_t nn) {
         s.nodes.reserve(nn * n);
-        s.dN.reserve(std::decay_t<decltype(s)>::kDnRows * n);
         s.vol.reserve(n);
         s.orig.reserve(n);
         s.length.reserve(n);
-        if (im.fibresPerElement && su.fibA.used) s.a0.reserve(3 * n);
-        if (im.fibresPerElement && su.fibB.used) s.b0.reserve(3 * n);
     };
     reserveSet(im.tet, nT, 4);
     reserveSet(im.hex, nH, 8);
-    im.hex.hgC.reserve(12 * nH);
     im.hex.hgK.reserve(nH);
-    // element data: tetrahedra by group, then hexahedra by group; fixed blocks within each group
     for (int kind = 0; kind < 2; ++kind)
         for (size_t gi = 0; gi < im.groups.size(); ++gi) {
             if (im.groups[gi].kind != kind) continue;
-            const size_t begin = kind == 0 ? im.tet.size() : im.hex.size();
-            if (kind == 0) fillTets(*this, im, su, gi); else fillHexes(*this, im, su, gi, m_hourglass.get());
-            addBlocks(im, kind, gi, begin, kind == 0 ? im.tet.size() : im.hex.size());
+            if (kind == 0) fillTets(*this, im, su, gi, slot0[gi]);
+            else fillHexes(*this, im, su, gi, slot0[gi], m_hourglass.get());
         }
-    im.buffers.finish(im.nodeCount, im.nodeOf);
-    if (im.buffers.rows() > 16 * im.nodeCount && im.blocks.size() > 16)
-        warn("the element blocks span " + std::to_string(im.buffers.rows() / im.nodeCount) +
-             " times the node count in their force buffers, in the node order used (the file's, or a reverse "
-             "Cuthill-McKee one when that is more than twice as compact): speed and memory suffer");
-    // pack the element data batch by batch, in the order of the blocks' batches (tetrahedra first)
-    std::vector<std::pair<size_t, size_t>> batchStarts[2];
-    for (const Block& b : im.blocks) {
-        if (batchStarts[b.kind].empty()) (b.kind == 0 ? im.tet.batchOffset : im.hex.batchOffset) = b.batchBase;
-        for (size_t e0 = b.begin; e0 < b.end; e0 += kBatch) batchStarts[b.kind].emplace_back(e0, std::min<size_t>(kBatch, b.end - e0));
-    }
-    im.tet.finish(batchStarts[0], im.mixed);
-    im.hex.finish(batchStarts[1], im.mixed);
+    addNodeRanges(im);
+    finishBuffers(*this, im, m_nodeBuffers.get());
 }
 
 } // namespace fascia::tled

@@ -181,12 +181,22 @@ void runBlocksOn(const Impl& im, const std::vector<Block>& blocks, const core::B
 #pragma omp parallel if (im.nodeCount > 65536)
     displacements(im, state, u);
     const long nb = static_cast<long>(blocks.size());
-#pragma omp parallel for schedule(dynamic, 1) if (nb > 1)
-    for (long bi = 0; bi < nb; ++bi) {
-        KernelIO io;
-        io.u = u.data();
-        setup(io, static_cast<size_t>(bi));
-        runBlock(im, blocks[static_cast<size_t>(bi)], io);
+#pragma omp parallel if (nb > 1)
+    {
+        std::vector<double> rows;  // compact rows: the block's u, its own copy (the force path's rows stay untouched)
+#pragma omp for schedule(dynamic, 1)
+        for (long bi = 0; bi < nb; ++bi) {
+            const size_t b = static_cast<size_t>(bi);
+            KernelIO io;
+            io.u = u.data();
+            if (im.compact) {
+                rows.resize(4 * (im.rows.rowEnd(b) - im.rows.rowBegin(b)));
+                im.rows.loadRows(b, u.data(), rows.data());
+                io.u = rows.data();
+            }
+            setup(io, b);
+            runBlock(im, blocks[b], io);
+        }
     }
 }
 
@@ -249,23 +259,31 @@ long TLEDForceField::forceBlocks() const { return static_cast<long>(m_impl->bloc
 
 void TLEDForceField::runForceBlock(long bi) {
     Impl& im = *m_impl;
-    const Block& b = im.blocks[static_cast<size_t>(bi)];
     KernelIO io;
-    io.u = im.u.data();
-    io.buf = im.buffers.buffer(static_cast<size_t>(bi));  // zero: the sum cleared it
-    io.bufLo = im.buffers.lo(static_cast<size_t>(bi));
+    const size_t b = static_cast<size_t>(bi);
+    if (im.compact) {
+        im.rows.loadBlock<true>(b, im.u.data());  // the block's rows of u, its force rows cleared
+        io.u = im.rows.positions(b);
+        io.buf = im.rows.buffer(b);
+    } else {
+        io.u = im.u.data();
+        io.buf = im.buffers.buffer(b);  // zero: the sum cleared it
+        io.bufLo = im.buffers.lo(b);
+    }
     for (size_t v = 0; v < im.visco.size(); ++v) {
         io.Yhist[v] = im.visco[v].Yprev.data();
         io.Ynew[v] = im.visco[v].Ycur.data();
     }
     io.streamY = im.streamStates;
-    runBlock(im, b, io);
+    runBlock(im, im.blocks[b], io);
     if (io.streamY) simd::streamFence();
 }
 
 void TLEDForceField::sumForceRange(double* f, long lo, long hi) {
-    // per node, in block order (bitwise the same for any thread count); clears the buffers
-    m_impl->buffers.sumRange(f, lo, hi);
+    // per node, in block order (bitwise the same for any thread count); the range layout clears its
+    // buffers here, the compact one when a block loads its rows
+    if (m_impl->compact) m_impl->rows.sumRange(f, lo, hi);
+    else m_impl->buffers.sumRange(f, lo, hi);
 }
 
 bool TLEDForceField::worstElement(const core::BaseMechanicalState& state, core::ElementReport& out) const {
@@ -297,7 +315,8 @@ void TLEDForceField::restoreState(core::StateReader& in) {
     im.clock.restore(in);
 }
 
-size_t TLEDForceField::bufferRows() const { return m_impl->buffers.rows(); }
+size_t TLEDForceField::bufferRows() const { return m_impl->compact ? m_impl->rows.rows() : m_impl->buffers.rows(); }
+bool TLEDForceField::compactBuffers() const { return m_impl->compact; }
 bool TLEDForceField::usesFastPath() const {
     for (const auto& g : m_impl->groups)
         if (!g.law) return false;

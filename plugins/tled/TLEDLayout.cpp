@@ -18,7 +18,8 @@ size_t elementBytes(const ElementSet<NN>& es) {
 
 core::LayoutBytes TLEDForceField::layoutBytes() const {
     const Impl& im = *m_impl;
-    core::LayoutBytes b = im.buffers.stepBytes();  // the block buffers, f and nodeOf
+    // the block buffers, f and nodeOf (compact: u copied into the rows, the per-node row lists)
+    core::LayoutBytes b = im.compact ? im.rows.stepBytes() : im.buffers.stepBytes();
     b.elementData = elementBytes(im.tet) + elementBytes(im.hex);
     for (const ViscoSet& vs : im.visco) b.elementData += (vs.Yprev.size() + vs.Ycur.size()) * sizeof(double);
     // displacements: x and X read (3 doubles a node), u written (4 a node); the kernel reads u once

@@ -1,8 +1,9 @@
-// TLEDForceField gives bitwise the same forces, energy and trajectory with 1, 2 and 3 threads
+// TLEDForceField gives bitwise the same forces, energy, stresses and trajectory with 1, 2 and 3
+// threads and with both layouts of its block buffers (node ranges and compact rows, nodeBuffers)
 // (docs/design.md, principle 5) on every force path: elastic tetrahedra, hexahedra with hourglass control,
 // a material outside the built-in laws (batched evaluation), fibres per element (fibreArray,
 // fibreArray2), and the viscous loops (one term, several terms in two series, and CompressibleNeoHookean
-// with a two-term series of every apply value). Each mesh has
+// with a two-term series of every apply value), and precision="mixed". Each mesh has
 // 24 element blocks or more (2048 tetrahedra or 512 hexahedra each), so that 3 threads take them in
 // a varying order: an order-dependent sum of the block buffers would show. The force field adds to
 // a force vector that already holds other forces (as the mechanical group's m g and external
@@ -32,7 +33,9 @@ struct Run {
     Positions f1, x;
     std::vector<Positions> f1again;  ///< the first forces evaluated again, kRepeats times
     double energy = 0;
+    std::vector<double> S;           ///< the stresses at the end
     size_t blocks = 0;
+    bool compact = false;            ///< the layout the force field used
 };
 
 bool bitwiseEqual(const Positions& a, const Positions& b) {
@@ -51,7 +54,7 @@ Positions preload(size_t n) {
 constexpr int kRepeats = 40;
 
 /// Three steps of semi-implicit Euler (v += dt f / m, x += dt v) from a deformed state at rest.
-Run runPath(const std::string& path, const fascia::MeshData& mesh, int threads) {
+Run runPath(const std::string& path, const fascia::MeshData& mesh, int threads, const std::string& layout) {
     omp_set_num_threads(threads);
     Bench b(mesh.points);
     // "compressible <apply>": CompressibleNeoHookean with a two-term series of each apply value (the
@@ -78,6 +81,8 @@ Run runPath(const std::string& path, const fascia::MeshData& mesh, int threads) 
     }
     if (path == "fibres one term") setParams(ff, {{"fibreArray", "fibres"}});
     if (path == "orthotropic two series") setParams(ff, {{"fibreArray", "fibres"}, {"fibreArray2", "fibres2"}});
+    if (path == "mixed tetrahedra") setParams(ff, {{"precision", "mixed"}});
+    setParams(ff, {{"nodeBuffers", layout}});
     ff.init();
     const double dt = 1e-4, m = 1000 * 1e-6;  // about rho h^3 per node
     ff.dtChanged(dt);
@@ -106,15 +111,18 @@ Run runPath(const std::string& path, const fascia::MeshData& mesh, int threads) 
     }
     r.x = b.state->x();
     r.energy = ff.potentialEnergy(*b.state);
+    ff.stresses(*b.state, 2 * dt, r.S);
+    r.compact = ff.compactBuffers();
     return r;
 }
 
 } // namespace
 
-TEST_CASE("TLEDForceField forces, energy and a short trajectory are bitwise identical with 1, 2 and 3 threads on 24 blocks",
+TEST_CASE("TLEDForceField forces, energy, stresses and a short trajectory are bitwise identical with 1, 2 and 3 threads "
+          "and both buffer layouts on 24 blocks",
           "[TLEDForceField][determinism]") {
     const std::string path = GENERATE("elastic tetrahedra", "hexahedra", "generic", "fibres one term", "orthotropic two series",
-                                        "compressible isochoric", "compressible volumetric", "compressible both");
+                                        "compressible isochoric", "compressible volumetric", "compressible both", "mixed tetrahedra");
     const bool hexes = path == "hexahedra" || path == "orthotropic two series";
     fascia::MeshData mesh;
     if (hexes) {
@@ -132,23 +140,28 @@ TEST_CASE("TLEDForceField forces, energy and a short trajectory are bitwise iden
     mesh.cellArrays["fibres"] = a;
     mesh.cellArrays["fibres2"] = bb;
     const int saved = omp_get_max_threads();
-    const Run one = runPath(path, mesh, 1);
+    const Run one = runPath(path, mesh, 1, "range");
     CAPTURE(path, one.blocks);
     REQUIRE(one.blocks >= 24);
+    REQUIRE(!one.compact);
     double scale = 0;
     for (const Vec3& v : one.f1) scale = std::max(scale, v.norm());
     REQUIRE(scale > 0);
-    // each multi-threaded run three times: the order in which threads take the blocks varies from
-    // run to run, and a single run can happen to repeat the serial order
-    for (int threads : {2, 3, 2, 3, 2, 3}) {
-        const Run other = runPath(path, mesh, threads);
-        CAPTURE(threads);
+    // each multi-threaded run three times, in both layouts: the order in which threads take the
+    // blocks varies from run to run, and a single run can happen to repeat the serial order
+    const std::pair<int, const char*> runs[] = {{1, "compact"}, {2, "range"},   {3, "compact"}, {2, "compact"},
+                                                {3, "range"},   {2, "compact"}, {3, "range"}};
+    for (const auto& [threads, layout] : runs) {
+        const Run other = runPath(path, mesh, threads, layout);
+        CAPTURE(threads, layout);
+        CHECK(other.compact == (std::string(layout) == "compact"));
         CHECK(bitwiseEqual(one.f1, other.f1));
         int differ = 0;
         for (const auto& g : other.f1again) differ += !bitwiseEqual(one.f1, g);
         CHECK(differ == 0);
         CHECK(bitwiseEqual(one.x, other.x));
         CHECK(std::memcmp(&one.energy, &other.energy, sizeof(double)) == 0);
+        CHECK((other.S.size() == one.S.size() && std::memcmp(one.S.data(), other.S.data(), one.S.size() * sizeof(double)) == 0));
     }
     omp_set_num_threads(saved);
 }

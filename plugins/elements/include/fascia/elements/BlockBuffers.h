@@ -6,12 +6,12 @@
 /// (docs/design.md, principle 5; docs/performance.md, lessons 4 and 5):
 ///
 /// - BlockBuffers: a block's buffer covers the range of node indices its elements touch; elements
-///   address it by node - lo(b). No copy-in; it grows with the numbering's bandwidth. TLED, and
-///   ElementAssembly for force fields that compute one element at a time.
+///   address it by node - lo(b). No copy-in; it grows with the numbering's bandwidth. TLED on
+///   narrow ranges, and ElementAssembly for force fields that compute one element at a time.
 /// - CompactBlockBuffers: a block's buffer holds one row per distinct node of its elements (compact
 ///   rows); the elements' node indices are rewritten to rows, the positions are copied into the
 ///   rows before the block runs, and each node sums its list of rows. It does not grow with the
-///   bandwidth, at the price of the copy-in. HEML.
+///   bandwidth, at the price of the copy-in. HEML, and TLED on wide ranges.
 ///
 /// Rows are 4 doubles (x y z and padding, the layout of simd::gather4 and simd::scatterAdd4).
 ///
@@ -102,11 +102,17 @@ public:
     /// allowed) and rewrites every entry to the node's row in the block: the block's distinct nodes
     /// in increasing order are its rows 0, 1, ... Returns the block's index.
     size_t addBlock(std::initializer_list<Nodes> parts);
+    /// Where loadBlock reads the node values from.
+    enum class Source {
+        Auto,     ///< the state's positions: directly below about 20k nodes (they stay in cache;
+                  ///< docs/performance.md, lesson 5), above from a copy in internal order
+                  ///< (positionsIn), where a block's rows are close together
+        Internal  ///< rows the caller keeps in internal order, 4 doubles per internal node (TLED's
+                  ///< displacements): no copy of its own; stepBytes leaves them to the caller
+    };
     /// Allocates the rows and buffers and builds, per node, its rows in block order. nodeOf:
-    /// internal node -> state node, one entry per node. Below about 20k nodes the blocks read the
-    /// state's positions directly (they stay in cache; docs/performance.md, lesson 5), above they
-    /// read a copy in internal order, where a block's rows are close together.
-    void finish(std::vector<int> nodeOf);
+    /// internal node -> state node, one entry per node.
+    void finish(std::vector<int> nodeOf, Source source = Source::Auto);
 
     size_t blockCount() const { return m_rowStart.size() - 1; }
     size_t rowBegin(size_t b) const { return m_rowStart[b]; }
@@ -119,13 +125,17 @@ public:
     bool directGather() const { return m_directGather; }
 
     /// The positions the blocks load from, given the state's x (3 doubles per node): x itself when
-    /// directGather(), else x copied into internal order (4 doubles per node). An orphaned
+    /// directGather() (or, with Source::Internal, the caller's rows), else x copied into internal
+    /// order (4 doubles per node). An orphaned
     /// "omp for": call it inside the parallel region of the element loop (or outside any).
     const double* positionsIn(const double* x);
     /// Copies block b's node positions into its rows from xi (positionsIn's result) and, when
     /// ClearForces, clears its force buffer. Inline: it runs per block, inside the element loop.
     template <bool ClearForces>
     FASCIA_INLINE void loadBlock(size_t b, const double* xi);
+    /// Block b's node values from xi (as loadBlock) into out, 4 doubles a row, rowEnd(b) - rowBegin(b)
+    /// rows: the rows of a caller's own (an output computed beside the force buffers).
+    FASCIA_INLINE void loadRows(size_t b, const double* xi, double* out) const;
     /// Block b's node positions, row r at 4 r (valid after loadBlock).
     const double* positions(size_t b) const { return m_xrow.data() + 4 * m_rowStart[b]; }
     /// Block b's force buffer, row r at 4 r.
@@ -144,7 +154,7 @@ public:
     /// sumInto for the state nodes [lo, hi) only: any thread, disjoint ranges (the threaded step,
     /// fascia/sim/ThreadedStep.h). The same bits as positionsIn and sumInto.
     void positionsRange(const double* x, long lo, long hi);
-    const double* positionsBase(const double* x) const { return m_directGather ? x : m_xin.data(); }
+    const double* positionsBase(const double* x) const { return m_ownCopy ? m_xin.data() : x; }
     void sumRange(double* f, long lo, long hi) const;
 
 private:
@@ -156,33 +166,38 @@ private:
     std::vector<int> m_nodeRowStart;    ///< per internal node p: its rows are m_nodeRows[start[p] .. [p + 1])
     std::vector<int> m_nodeRows;        ///< rows of each node, in block order
     bool m_directGather = false;
+    bool m_ownCopy = true;  ///< positions in internal order kept here (Source::Auto above the direct size)
     simd::DVec m_xin;   ///< positions in internal order, 4 doubles per node
     simd::DVec m_xrow;  ///< positions per row
     simd::DVec m_buf;   ///< forces per row (the per-block node buffers)
 };
 
-template <bool ClearForces>
-FASCIA_INLINE void CompactBlockBuffers::loadBlock(size_t b, const double* xi) {
+FASCIA_INLINE void CompactBlockBuffers::loadRows(size_t b, const double* xi, double* out) const {
     const size_t r0 = m_rowStart[b], r1 = m_rowStart[b + 1];
     if (m_directGather) {
         // small meshes: straight from the state's positions (they sit in cache), one barrier less
         for (size_t r = r0; r < r1; ++r) {
             const double* p = xi + 3 * size_t(m_rowNode[r]);
-            double* q = m_xrow.data() + 4 * r;
+            double* q = out + 4 * (r - r0);
             q[0] = p[0];
             q[1] = p[1];
             q[2] = p[2];
             q[3] = 0.0;
         }
     } else {
-        // from the positions in internal order, where the rows of a block are close together
+        // from the values in internal order, where the rows of a block are close together
         for (size_t r = r0; r < r1; ++r) {
             const double* p = xi + 4 * size_t(m_rowInternal[r]);
-            double* q = m_xrow.data() + 4 * r;
+            double* q = out + 4 * (r - r0);
             for (int k = 0; k < 4; ++k) q[k] = p[k];
         }
     }
-    if constexpr (ClearForces) std::fill(m_buf.data() + 4 * r0, m_buf.data() + 4 * r1, 0.0);
+}
+
+template <bool ClearForces>
+FASCIA_INLINE void CompactBlockBuffers::loadBlock(size_t b, const double* xi) {
+    loadRows(b, xi, m_xrow.data() + 4 * m_rowStart[b]);
+    if constexpr (ClearForces) std::fill(m_buf.data() + 4 * m_rowStart[b], m_buf.data() + 4 * m_rowStart[b + 1], 0.0);
 }
 
 } // namespace fascia::elements

@@ -55,12 +55,14 @@
 /// (instantaneous) energy.
 ///
 /// Parallelism (docs/design.md, determinism): elements are split into fixed blocks (independent of the thread
-/// count); each block adds into its own node buffer (covering only the node range it touches) and the
-/// buffers are summed per node in block order, so results are bitwise identical for any thread count.
-/// A block's buffer spans the range of node indices its elements use, so the mesh file's numbering
-/// matters: when it makes the buffers more than twice as large as a reverse Cuthill-McKee numbering
-/// of the nodes with the elements sorted by their lowest node (a Gmsh file's order: blocks that span
-/// every node), the force field works in that order internally; the state's order is unchanged.
+/// count); each block adds into its own node buffer and the buffers are summed per node in block
+/// order, so results are bitwise identical for any thread count. A block's buffer spans the range of
+/// node indices its elements use, so the mesh file's numbering matters: when it makes the buffers
+/// more than twice as large as a reverse Cuthill-McKee numbering of the nodes with the elements
+/// sorted by their lowest node (a Gmsh file's order: blocks that span every node), the force field
+/// works in that order internally; the state's order is unchanged. Where the ranges stay wide (large
+/// meshes: a block's range is about a plane of the mesh) each buffer holds instead one row per node
+/// its elements use (nodeBuffers="auto").
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/LayoutBytes.h"
@@ -133,6 +135,8 @@ public:
     size_t blockCount() const;
     /// Node rows of the blocks' force buffers, all blocks together (for tests of the node ordering).
     size_t bufferRows() const;
+    /// True when the blocks' force buffers are compact rows (nodeBuffers), false for node ranges.
+    bool compactBuffers() const;
     /// True when every element group runs the inlined loop of a built-in law (false: some group's
     /// material is not in materials::BuiltinMaterials and runs the generic loop, one virtual
     /// evaluate() per batch).
@@ -165,6 +169,11 @@ public:
         "performance: write the viscous state variables with streaming (cache-bypassing) stores; auto: when "
         "they take more than 8 MiB, where they no longer fit the caches beside the element data. Results are "
         "the same either way"), "auto"};
+    core::Param<std::string> m_nodeBuffers{this, core::ParamSpec("nodeBuffers").choices({"auto", "range", "compact"}).help(
+        "performance: the layout of the blocks' force buffers. range: a block's buffer covers the range of node "
+        "indices its elements use (no copy, but it grows with the numbering's bandwidth); compact: one row per "
+        "distinct node of the block, the displacements copied in per block; auto: compact when the ranges take "
+        "more than 1.5 times the rows of compact. Results are the same either way"), "auto"};
     core::Param<std::string> m_precision{this, core::ParamSpec("precision").choices({"double", "mixed"}).help(
         "double: everything in double. mixed: the element data (shape-function derivatives, volumes, "
         "hourglass and fibre vectors) and the element loop in float, the displacements, forces, block sums, "
