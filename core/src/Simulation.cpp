@@ -123,9 +123,11 @@ struct InitOrder {
             if (auto* t = dynamic_cast<Component*>(p->linkTarget())) run(t);
         for (Component* d : c->dependencies()) run(d);
         active.erase(c);
-        // a value that came through a data link is known only now: check its range
+        // a value that came through a data link is known only now, and one set from code (the C++
+        // API: Param::set) was never checked: check their ranges and choices here, for every
+        // component alike (an XML value was checked when read; checking it again costs nothing)
         for (BaseParam* p : c->params())
-            if (p->linkTarget() && !p->isComponentLink()) p->checkValue();
+            if (!p->isComponentLink() && (p->linkTarget() || p->isSet())) p->checkValue();
         c->init();
         SceneInit::markInitialised(*c);
         done.insert(c);

@@ -102,8 +102,6 @@ void HEMLForceField::init() {
     m_data = std::make_unique<HEMLData>();
     HEMLData& d = *m_data;
     d.J0 = m_J0.get();
-    // a value set from code is not checked on the way in (XML is): a located error here
-    m_precision.checkValue();
     d.mixed = m_precision.get() == "mixed";
 
     // topology and rest positions (the element layer's one rule)

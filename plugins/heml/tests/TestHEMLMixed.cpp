@@ -173,13 +173,18 @@ TEST_CASE("HEML mixed precision halves the element data: 48 instead of 80 bytes 
 }
 
 TEST_CASE("HEML precision other than double or mixed is a located error", "[HEMLForceField]") {
-    SECTION("set from code: at init") {
+    SECTION("set from code: at the simulation's init (the check of every component's values set from code)") {
         const MeshData mesh = cubeMesh(1, 1, 1);
-        Scene s(mesh);
-        addMaterial(s.root, "NeoHookean", "mat");
-        s.ff->m_precision.set("single");
-        CHECK_THROWS_WITH(s.init(), Contains("HEMLForceField 'ff'") && Contains("precision = single") &&
-                                        Contains("one of double|mixed"));
+        auto root = std::make_unique<core::Node>("root");
+        root->add<TestState>("mo").setRest(mesh.points);
+        root->add<TestMass>("mass");
+        addMaterial(*root, "NeoHookean", "mat");
+        auto& ff = root->add<heml::HEMLForceField>("ff");
+        ff.m_mesh.set(mesh);
+        ff.m_precision.set("single");
+        core::Simulation sim(std::move(root));
+        CHECK_THROWS_WITH(sim.init(), Contains("HEMLForceField 'ff'") && Contains("precision = single") &&
+                                          Contains("one of double|mixed"));
     }
     SECTION("given in XML: at the attribute's line") {
         const std::string xml = "<Node name=\"root\" dt=\"1e-4\">\n"

@@ -351,6 +351,33 @@ TEST_CASE("A scene built in code runs like one from XML", "[Simulation]") {
     CHECK(paramOf<int>(sim, "c", "beginSteps") == 4);
 }
 
+TEST_CASE("Values set from code are checked at init like values read from XML", "[Simulation][Param]") {
+    loadTestPlugin();
+    const auto build = [](const std::string& param, const std::string& value) {
+        auto root = std::make_unique<Node>("root");
+        auto& counter = root->addComponent(Registry::instance().create("TestCounter"));
+        counter.setName("c");
+        auto* p = counter.findParam(param);
+        REQUIRE(p != nullptr);
+        if (param == "mode") dynamic_cast<Param<std::string>&>(*p).set(value);
+        else dynamic_cast<Param<double>&>(*p).set(std::stod(value));
+        return std::make_unique<Simulation>(std::move(root));
+    };
+    SECTION("a choice outside the list") {
+        auto sim = build("mode", "slow");
+        CHECK_THROWS_WITH(sim->init(), Catch::Contains("TestCounter 'c'") && Catch::Contains("mode = slow") &&
+                                           Catch::Contains("fast|accurate|debug"));
+    }
+    SECTION("a number outside its range") {
+        auto sim = build("rate", "-1");
+        CHECK_THROWS_WITH(sim->init(), Catch::Contains("TestCounter 'c'") && Catch::Contains("rate = -1"));
+    }
+    SECTION("values inside pass") {
+        auto sim = build("mode", "accurate");
+        CHECK_NOTHROW(sim->init());
+    }
+}
+
 TEST_CASE("By default a component is initialised after the state in its context", "[Simulation][Component]") {
     auto sim = scene(R"(<Node name="root" dt="0.1">
   <TestCounter name="before" label="a"/>
