@@ -232,17 +232,15 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, d
             ff.fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + fmt(V) + " m^3)");
         }
         // hourglass control: gamma_q = h_q - (c_q . dN/dX), c_q = sum_a h_qa X_a; the loop needs c_q only
-        double hc[12] = {};
-        for (int q = 0; q < 4; ++q)
-            for (int a = 0; a < 8; ++a)
-                for (int i = 0; i < 3; ++i) hc[3 * q + i] += elements::kHourglass[q][a] * P[a][i];
+        double hc[12];
+        elements::hexHourglassVectors(P, hc);
         const double absV = std::abs(V);
         for (int a = 0; a < 8; ++a) s.nodes.push_back(su.internalOf[static_cast<size_t>(h[a])]);
         s.dN.insert(s.dN.end(), dN, dN + 24);
         s.vol.push_back(absV);
         s.orig.push_back(static_cast<int>(e));
         s.hgC.insert(s.hgC.end(), hc, hc + 12);
-        s.hgK.push_back(hourglass * g.pModulus * absV * sumB2 / 8.0);
+        s.hgK.push_back(elements::hexHourglassStiffness(hourglass, *g.material, absV, sumB2));
         s.length.push_back(elements::hexCharacteristicLength(P, absV));
         pushFibres(im, su, g, su.tets.size() + e, s);
     }
@@ -287,7 +285,6 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
         g.kind = kind;
         g.material = m;
         g.uses = m->uses();
-        g.pModulus = m->bulkModulus() + 4.0 / 3.0 * m->shearModulus();
         chooseKernel(g, im.mixed);
         im.groups.push_back(g);
         su.perGroup.emplace_back();
