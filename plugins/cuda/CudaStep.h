@@ -1,7 +1,7 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
-/// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernel on
-/// tetrahedra (the laws of DeviceLaws.h), then a node kernel that sums each node's element forces
+/// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernels on
+/// tetrahedra and hexahedra (the laws of DeviceLaws.h), then a node kernel that sums each node's element forces
 /// in a fixed order, adds ConstantForce and gravity, holds FixedConstraint's axes and integrates
 /// with SemiImplicitEuler (HEML eq. (32)), in float or double. A component it cannot run is a
 /// located error naming it; no device is a located error too (exit 2): it never falls back to the

@@ -1,6 +1,6 @@
 #pragma once
-/// The laws the device step runs, in one list: each costs one element kernel per precision in the
-/// .cu file (nvcc time in every build), so the list grows as the GPU path is tested law by law.
+/// The laws the device step runs, in one list: each costs two element kernels (tetrahedra,
+/// hexahedra) per precision in the .cu file (nvcc time in every build), so the list grows as the GPU path is tested law by law.
 /// A material not in it is a located error naming it (CudaStep), never a host fallback.
 #include "fascia/elements/LawDispatch.h"
 #include "fascia/materials/BuiltinMaterials.h"

@@ -26,7 +26,8 @@ public:
     }
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
-        for (int e = 0; e < d.nTets; ++e) elementForces(d, m_p, e);
+        for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
+        for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
     }
     void nodePass(const NodeParams<double>& p) override {
         const StepArrays<T> d = m_dev.view();

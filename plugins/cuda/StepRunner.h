@@ -17,7 +17,7 @@ public:
     virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
     /// Downloads them.
     virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
-    /// The element kernel over every tetrahedron.
+    /// The element kernels over every tetrahedron and every hexahedron.
     virtual void elementPass() = 0;
     /// The node kernel over every node (after an element pass).
     virtual void nodePass(const NodeParams<double>& p) = 0;

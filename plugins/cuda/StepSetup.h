@@ -14,38 +14,40 @@ namespace fascia::cuda {
 /// Everything the kernels read, in double and in the layout of StepArrays (see there), built once
 /// from a group by buildStepSetup.
 struct StepSetup {
-    int nTets = 0, nNodes = 0;
-    std::vector<int> tet;
+    int nTets = 0, nHexes = 0, nNodes = 0;
+    std::vector<int> tet, hex;
     std::vector<double> dN, vol;
+    std::vector<double> hdN, hgC, hvol, hgK;  ///< hexahedra
     std::vector<int> slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<double> ext, mass, invMass;
     std::vector<std::uint8_t> fixed;
     const materials::BaseMaterial* material = nullptr;  ///< the elements' one material
     double J0 = 0.4;
+    double hourglass = 0;  ///< TLEDForceField's hourglassStiffness (kappa of the stiffnesses hgK)
     elements::Vec33<double> a0{1, 0, 0}, b0{0, 1, 0};  ///< the material's fibre directions
     double damping = 0;                                ///< SemiImplicitEuler's alpha
     bool halfStepStart = true;                         ///< SemiImplicitEuler's leapfrog start
 };
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
-/// tetrahedra with one built-in law of DeviceLaws.h, FixedConstraint, ConstantForce without a
+/// tetrahedra and hexahedra with one built-in law of DeviceLaws.h, FixedConstraint, ConstantForce without a
 /// curve, LumpedMass, SemiImplicitEuler) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
 /// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g);
 
-/// The slot lists of a tetrahedral mesh (tet as in StepArrays): slotStart (nNodes + 1) and slots.
-void buildSlots(int nTets, int nNodes, const std::vector<int>& tet, std::vector<int>& slotStart, std::vector<std::uint32_t>& slots);
+/// The slot lists of s's elements (tet and hex as in StepArrays): s.slotStart (nNodes + 1) and s.slots.
+void buildSlots(StepSetup& s);
 
 /// The arrays of a setup in the scalar T, as host vectors (what an upload copies to the device;
 /// the emulation's "device" copy is a second set of them).
 template <class T>
 struct StepArraysHost {
-    int nTets = 0, nNodes = 0;
-    std::vector<int> tet, slotStart;
+    int nTets = 0, nHexes = 0, nNodes = 0;
+    std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
-    std::vector<T> dN, vol, ef, ext, mass, invMass, u, v;
+    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, ext, mass, invMass, u, v;
     std::vector<std::uint8_t> fixed;
 
     /// The StepArrays over these vectors.
@@ -57,6 +59,13 @@ struct StepArraysHost {
         d.dN = dN.data();
         d.vol = vol.data();
         d.ef = ef.data();
+        d.nHexes = nHexes;
+        d.hex = hex.data();
+        d.hdN = hdN.data();
+        d.hgC = hgC.data();
+        d.hvol = hvol.data();
+        d.hgK = hgK.data();
+        d.hef = hef.data();
         d.slotStart = slotStart.data();
         d.slots = slots.data();
         d.ext = ext.data();
@@ -82,6 +91,13 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.dN = conv(s.dN);
     h.vol = conv(s.vol);
     h.ef.assign(12 * static_cast<size_t>(s.nTets), T(0));
+    h.nHexes = s.nHexes;
+    h.hex = s.hex;
+    h.hdN = conv(s.hdN);
+    h.hgC = conv(s.hgC);
+    h.hvol = conv(s.hvol);
+    h.hgK = conv(s.hgK);
+    h.hef.assign(24 * static_cast<size_t>(s.nHexes), T(0));
     h.ext = conv(s.ext);
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);

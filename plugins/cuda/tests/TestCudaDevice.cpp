@@ -25,10 +25,11 @@ void requireDevice() {
 TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "[CudaStep]") {
     requireDevice();
     const Law law = GENERATE(from_range(deviceLaws()));
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Hexes, Mesh::Mixed);
     const double scale = GENERATE(0.3, 1.0, 3.0);
     const bool useFloat = GENERATE(false, true);
-    CAPTURE(law.name, scale, useFloat);
-    ForceProbe p = probeForces(law, scale);
+    CAPTURE(law.name, meshName(mesh), scale, useFloat);
+    ForceProbe p = probeForces(law, scale, mesh);
     auto runner = cuda::makeCudaRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double, 128);
     runner->setState(p.u, p.v);
     runner->elementPass();
@@ -49,6 +50,23 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[Cu
     ref->init();
     for (int s = 0; s < steps; ++s) ref->step();
     const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps);
+    const auto& mo = ref->state("mo");
+    const double err = displacementError(x, mo.x(), mo.x0());
+    CAPTURE(sci(err));
+    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+}
+
+TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000 steps", "[CudaStep]") {
+    requireDevice();
+    const Mesh mesh = GENERATE(Mesh::Hexes, Mesh::Mixed);
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(meshName(mesh), law.name, precision);
+    const int steps = 1000;
+    auto ref = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
+    ref->init();
+    for (int s = 0; s < steps; ++s) ref->step();
+    const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps, mesh);
     const auto& mo = ref->state("mo");
     const double err = displacementError(x, mo.x(), mo.x0());
     CAPTURE(sci(err));
@@ -76,9 +94,10 @@ TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory for any block s
 TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "[CudaStep]") {
     requireDevice();
     const Law law = GENERATE(from_range(deviceLaws()));
-    CAPTURE(law.name);
-    const Positions gpu = trajectoryEnd(law, "<CudaStep/>", 300);
-    const Positions emu = trajectoryEnd(law, "<CudaStep emulate=\"true\"/>", 300);
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    CAPTURE(law.name, meshName(mesh));
+    const Positions gpu = trajectoryEnd(law, "<CudaStep/>", 300, mesh);
+    const Positions emu = trajectoryEnd(law, "<CudaStep emulate=\"true\"/>", 300, mesh);
     auto ref = core::Simulation::fromString(scene(law, ""));
     ref->init();
     const double err = displacementError(gpu, emu, ref->state("mo").x0());

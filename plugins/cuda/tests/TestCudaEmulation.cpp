@@ -11,10 +11,14 @@ using namespace cudatest;
 
 TEST_CASE("The emulated element and node kernels give TLED's forces on every node", "[CudaStep]") {
     const Law law = GENERATE(from_range(deviceLaws()));
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Hexes, Mesh::Mixed);
     const double scale = GENERATE(0.3, 1.0, 3.0);  // 3: some elements below J0
     const bool useFloat = GENERATE(false, true);
-    CAPTURE(law.name, scale, useFloat);
-    ForceProbe p = probeForces(law, scale);
+    CAPTURE(law.name, meshName(mesh), scale, useFloat);
+    ForceProbe p = probeForces(law, scale, mesh);
+    REQUIRE(p.setup.nTets == (mesh == Mesh::Hexes ? 0 : mesh == Mesh::Tets ? 72 : 48));
+    REQUIRE(p.setup.nHexes == (mesh == Mesh::Tets ? 0 : mesh == Mesh::Hexes ? 12 : 4));
+    for (double K : p.setup.hgK) REQUIRE(K > 0);  // the hourglass forces take part
     auto runner = cuda::makeEmulatedRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double);
     runner->setState(p.u, p.v);
     runner->elementPass();
@@ -27,19 +31,27 @@ TEST_CASE("The emulated element and node kernels give TLED's forces on every nod
 }
 
 TEST_CASE("The slot lists give every element corner to its node once, by element then corner", "[CudaStep]") {
-    ForceProbe p = probeForces(deviceLaws()[0], 1.0);
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Hexes, Mesh::Mixed);
+    CAPTURE(meshName(mesh));
+    ForceProbe p = probeForces(deviceLaws()[0], 1.0, mesh);
     const cuda::StepSetup& s = p.setup;
     REQUIRE(s.slotStart.size() == size_t(s.nNodes) + 1);
-    REQUIRE(s.slotStart.back() == 4 * s.nTets);
+    REQUIRE(s.slotStart.back() == 4 * s.nTets + 8 * s.nHexes);
     std::set<std::uint32_t> seen;
     for (int n = 0; n < s.nNodes; ++n)
         for (int k = s.slotStart[size_t(n)]; k < s.slotStart[size_t(n) + 1]; ++k) {
             const std::uint32_t slot = s.slots[size_t(k)];
-            CHECK(s.tet[size_t(slot & 3u) * size_t(s.nTets) + (slot >> 2)] == n);
+            const size_t e = slot >> 3, a = slot & 7u;
+            if (e < size_t(s.nTets)) {
+                CHECK(a < 4);
+                CHECK(s.tet[a * size_t(s.nTets) + e] == n);
+            } else {
+                CHECK(s.hex[a * size_t(s.nHexes) + e - size_t(s.nTets)] == n);
+            }
             if (k > s.slotStart[size_t(n)]) CHECK(s.slots[size_t(k) - 1] < slot);
             seen.insert(slot);
         }
-    CHECK(seen.size() == size_t(4 * s.nTets));
+    CHECK(seen.size() == size_t(4 * s.nTets + 8 * s.nHexes));
 }
 
 TEST_CASE("CudaStep emulated follows the CPU trajectory over 400 steps", "[CudaStep]") {
@@ -59,6 +71,25 @@ TEST_CASE("CudaStep emulated follows the CPU trajectory over 400 steps", "[CudaS
     double moved = 0;
     for (size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (mo.x()[i] - mo.x0()[i]).norm());
     CHECK(moved > 1e-5);
+}
+
+TEST_CASE("CudaStep emulated follows the CPU trajectory of hexahedra with hourglass control over 1000 steps", "[CudaStep]") {
+    const Mesh mesh = GENERATE(Mesh::Hexes, Mesh::Mixed);
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(meshName(mesh), law.name, precision);
+    const int steps = 1000;
+    auto ref = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
+    ref->init();
+    for (int s = 0; s < steps; ++s) ref->step();
+    const Positions x = trajectoryEnd(law, "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", steps, mesh);
+    const auto& mo = ref->state("mo");
+    const double err = displacementError(x, mo.x(), mo.x0());
+    CAPTURE(sci(err));
+    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+    double moved = 0;
+    for (size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (mo.x()[i] - mo.x0()[i]).norm());
+    CHECK(moved > 1e-4);
 }
 
 TEST_CASE("CudaStep emulated keeps the held axes at rest and starts the leapfrog like SemiImplicitEuler", "[CudaStep]") {

@@ -10,15 +10,22 @@
 
 namespace fascia::cuda {
 
-/// The arrays of one step, scalar T (float or double). Element e, corner a (0..3), component i:
+/// The arrays of one step, scalar T (float or double). Tetrahedron e, corner a (0..3), component i:
 ///   tet[a nTets + e]             node of corner a
 ///   dN[(3 (a-1) + i) nTets + e]  dN_a/dX_i for a = 1..3 (dN_0 = -(dN_1 + dN_2 + dN_3))
 ///   vol[e]                       rest volume
 ///   ef[(3 a + i) nTets + e]      the element's force on its corner a (written by the element
 ///                                kernel, each element to its own slots: no atomics)
+/// Hexahedron e (uniform strain with hourglass control, fascia/elements/Hourglass.h), corner a (0..7):
+///   hex[a nHexes + e]            node of corner a (VTK order)
+///   hdN[(3 a + i) nHexes + e]    volume-averaged dN_a/dX_i
+///   hgC[(3 q + i) nHexes + e]    hourglass vector c_q (q = 0..3)
+///   hvol[e], hgK[e]              rest volume, hourglass stiffness K
+///   hef[(3 a + i) nHexes + e]    the element's force on its corner a
 /// Node n, component i:
-///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 4 e + a, by element
-///                                then corner: the fixed order of the sum (docs/design.md, principle 5)
+///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
+///                                tetrahedra, then the hexahedra (e - nTets), by element then
+///                                corner: the fixed order of the sum (docs/design.md, principle 5)
 ///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
 ///                                formed from displacements, accurate in float; lesson 6)
 ///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
@@ -30,6 +37,13 @@ struct StepArrays {
     const T* dN = nullptr;
     const T* vol = nullptr;
     T* ef = nullptr;
+    int nHexes = 0;
+    const int* hex = nullptr;
+    const T* hdN = nullptr;
+    const T* hgC = nullptr;
+    const T* hvol = nullptr;
+    const T* hgK = nullptr;
+    T* hef = nullptr;
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
