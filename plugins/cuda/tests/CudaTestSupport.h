@@ -4,6 +4,7 @@
 // z = 0.03, under gravity)
 // with each law of the device step, the forces of TLEDForceField at a deformed state, and the
 // arrays the device step builds for them.
+#include "DeviceLaws.h"
 #include "StepRunner.h"
 
 #include "fascia/sim/Simulation.h"
@@ -17,6 +18,7 @@
 #include <random>
 #include <utility>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace cudatest {
@@ -31,11 +33,27 @@ struct Law {
     std::string name, element;
 };
 
+/// Every law of the device step (cuda::DeviceMaterials) with its example parameters (kExample:
+/// fibre directions included), in list order.
 inline std::vector<Law> deviceLaws() {
-    return {{"NeoHookean", "<NeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\"/>"},
-            {"CompressibleNeoHookean", "<CompressibleNeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.4\"/>"},
-            {"TransverselyIsotropic",
-             "<TransverselyIsotropic name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\" eta=\"6000\" direction=\"1 1 2\"/>"}};
+    std::vector<Law> out;
+    fascia::materials::detail::forEachIn(
+        [&](auto* tag) {
+            const std::string name = std::decay_t<decltype(*tag)>::kName;
+            std::string element = "<" + name + " name=\"mat\"";
+            for (const auto& [key, value] : fascia::materials::exampleParameters(name)) element += " " + key + "=\"" + value + "\"";
+            out.push_back({name, element + "/>"});
+        },
+        cuda::DeviceMaterials{});
+    return out;
+}
+
+/// The law of that name from deviceLaws().
+inline Law deviceLaw(const std::string& name) {
+    for (const Law& l : deviceLaws())
+        if (l.name == name) return l;
+    FAIL("no device law " << name);
+    return {};
 }
 
 /// The cantilever's elements: the grid's 6 tetrahedra per cell, its hexahedra, or hexahedra in the
