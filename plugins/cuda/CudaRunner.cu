@@ -33,9 +33,15 @@ __global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
 }
 
 template <class T>
-__global__ void nodeKernel(StepArrays<T> d, NodeParams<T> p) {
+__global__ void eulerKernel(StepArrays<T> d, NodeParams<T> p) {
     const int n = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (n < d.nNodes) nodeStep(d, p, n);
+    if (n < d.nNodes) eulerStep(d, p, n);
+}
+
+template <class T>
+__global__ void centralKernel(StepArrays<T> d, NodeParams<T> p) {
+    const int n = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if (n < d.nNodes) centralStep(d, p, n);
 }
 
 template <class T>
@@ -82,7 +88,7 @@ private:
 template <class Law, class T>
 class CudaRunner final : public StepRunner {
 public:
-    CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block) {
+    CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
         const StepArraysHost<T> h = toArrays<T>(s);
         m_tet.upload(h.tet);
         m_slotStart.upload(h.slotStart);
@@ -101,7 +107,10 @@ public:
         m_invMass.upload(h.invMass);
         m_u.upload(h.u);
         m_v.upload(h.v);
-        m_fixed.upload(h.fixed);
+        m_hold.upload(h.hold);
+        m_tu.upload(h.tu);
+        m_tv.upload(h.tv);
+        m_du.upload(h.du);
         m_f.upload(h.u);
         m_d.nTets = h.nTets;
         m_d.nNodes = h.nNodes;
@@ -121,9 +130,12 @@ public:
         m_d.ext = m_ext.get();
         m_d.mass = m_mass.get();
         m_d.invMass = m_invMass.get();
-        m_d.fixed = m_fixed.get();
+        m_d.hold = m_hold.get();
+        m_d.tu = m_tu.get();
+        m_d.tv = m_tv.get();
         m_d.u = m_u.get();
         m_d.v = m_v.get();
+        m_d.du = m_du.get();
         m_p.law = law;
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
@@ -150,9 +162,15 @@ public:
             check(cudaGetLastError(), "the hexahedron kernel launch");
         }
     }
+    void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
+        // (the same sizes as at the upload above: the device pointers stay)
+        m_tu.upload(std::vector<T>(tu.begin(), tu.end()));
+        m_tv.upload(std::vector<T>(tv.begin(), tv.end()));
+    }
     void nodePass(const NodeParams<double>& p) override {
-        const NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
-        nodeKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
+        const NodeParams<T> q = nodeParamsIn<T>(p);
+        if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
+        else eulerKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
         check(cudaGetLastError(), "the node kernel launch");
     }
     void internalForces(std::vector<double>& f) override {
@@ -168,8 +186,9 @@ private:
     int m_block;
     DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f;
-    DeviceArray<std::uint8_t> m_fixed;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<std::uint32_t> m_hold;
+    bool m_central;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
 };

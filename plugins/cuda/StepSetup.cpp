@@ -24,9 +24,11 @@ const P* paramOf(const core::Component& c, const std::string& name) {
            {"remove CudaStep to run this scene on the CPU"});
 }
 
-/// The integrator's parameters: SemiImplicitEuler only.
+/// The integrator and its parameters: SemiImplicitEuler or CentralDifference.
 void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
-    if (integ.className() != "SemiImplicitEuler") unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler)");
+    if (integ.className() == "CentralDifference") s.scheme = StepSetup::Scheme::CentralDifference;
+    else if (integ.className() != "SemiImplicitEuler")
+        unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler or CentralDifference)");
     if (const auto* d = paramOf<core::Param<double>>(integ, "damping")) s.damping = d->get();
     if (const auto* h = paramOf<core::Param<bool>>(integ, "halfStepStart")) s.halfStepStart = h->get();
 }
@@ -101,6 +103,27 @@ void hexGeometry(const core::BaseForceField& ff, const Positions& X, const Hexah
     }
 }
 
+/// The hold codes of the nodes' axes (StepArrays::hold), the constraints in their order so that the
+/// last one that holds an axis decides, as in projectState; a moving axis gets a target of its own.
+void holdCodes(const core::MechanicalGroup& g, StepSetup& s) {
+    s.hold.assign(3 * static_cast<size_t>(s.nNodes), 0);
+    s.targetAt.clear();
+    for (const core::BaseConstraint* c : g.constraints) {
+        const std::array<bool, 3> axes = c->constrainedAxes();
+        for (int node : c->constrainedNodes())
+            for (int i = 0; i < 3; ++i) {
+                if (!axes[static_cast<size_t>(i)]) continue;
+                std::uint32_t& h = s.hold[3 * static_cast<size_t>(node) + static_cast<size_t>(i)];
+                if (!c->prescribesMotion()) {
+                    h = 1;
+                } else if (h < 2) {
+                    h = static_cast<std::uint32_t>(2 + s.targetAt.size());
+                    s.targetAt.push_back(3 * node + i);
+                }
+            }
+    }
+}
+
 } // namespace
 
 void buildSlots(StepSetup& s) {
@@ -144,7 +167,7 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     }
     if (!tled) owner.fail("the state '" + state.path() + "' has no TLEDForceField: the device step runs TLED only");
     for (const core::BaseConstraint* c : g.constraints)
-        if (c->className() != "FixedConstraint") unsupported(*c, c->className());
+        if (c->className() != "FixedConstraint" && c->className() != "PrescribedDisplacement") unsupported(*c, c->className());
     const Tetrahedra noTets;
     const Hexahedra noHexes;
     const Tetrahedra& tets = tled->tetrahedra() ? *tled->tetrahedra() : noTets;
@@ -162,12 +185,7 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     buildSlots(s);
     s.mass = g.mass;
     s.invMass = g.invMass;
-    s.fixed.assign(nNodes, 0);
-    for (const core::BaseConstraint* c : g.constraints) {
-        const std::array<bool, 3> axes = c->constrainedAxes();
-        const std::uint8_t bits = static_cast<std::uint8_t>((axes[0] ? 1 : 0) | (axes[1] ? 2 : 0) | (axes[2] ? 4 : 0));
-        for (int node : c->constrainedNodes()) s.fixed[static_cast<size_t>(node)] |= bits;
-    }
+    holdCodes(g, s);
     return s;
 }
 
@@ -178,7 +196,25 @@ NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s
     p.dt = dt;
     p.kick = kick;
     p.alpha = s.damping;
+    p.a = 0.5 * s.damping * dt;  // CentralDifference's c2 = 1 - a, c1 = 1 - b
+    p.b = p.a / (1.0 + p.a);
     return p;
+}
+
+void motionTargets(core::MechanicalGroup& g, const StepSetup& s, double tEnd, std::vector<double>& tu, std::vector<double>& tv) {
+    tu.resize(s.targetAt.size());
+    tv.resize(s.targetAt.size());
+    if (s.targetAt.empty()) return;
+    g.projectState(tEnd);
+    const Positions& x = g.state->x();
+    const Positions& X = g.state->x0();
+    const Positions& v = g.state->v();
+    for (size_t j = 0; j < s.targetAt.size(); ++j) {
+        const size_t n = static_cast<size_t>(s.targetAt[j] / 3);
+        const int i = s.targetAt[j] % 3;
+        tu[j] = x[n][i] - X[n][i];
+        tv[j] = v[n][i];
+    }
 }
 
 std::string deviceLawNames() {

@@ -191,4 +191,30 @@ inline double displacementError(const Positions& x, const Positions& y, const Po
     return num / den;
 }
 
+/// A prescribed lift of nodes 12 (a roller in x: held there, lifted in y and z) and 30, 31 (pulled),
+/// on y and z (a body element of scene()).
+inline const std::string kLift =
+    "<PrescribedDisplacement name=\"lift\" indices=\"12 30 31\" directions=\"0 1 1\" displacement=\"0 0.001 0.002\" "
+    "shape=\"smooth\" rampTime=\"0.01\"/>";
+
+/// The ends of a trajectory of the scene on the CPU and with `root` (a CudaStep), and their
+/// difference relative to the CPU's largest displacement.
+struct Pair {
+    Positions cpu, device, rest;
+    double err = 0, moved = 0;
+};
+
+inline Pair runBoth(const Law& law, const std::string& body, const std::string& integrator, Mesh mesh, const std::string& root, int steps) {
+    Pair r;
+    for (int k = 0; k < 2; ++k) {
+        auto sim = core::Simulation::fromString(scene(law, k == 0 ? "" : root, body, integrator, mesh));
+        for (int s = 0; s < steps; ++s) sim->step();
+        (k == 0 ? r.cpu : r.device) = sim->state("mo").x();
+        r.rest = sim->state("mo").x0();
+    }
+    r.err = displacementError(r.device, r.cpu, r.rest);
+    for (size_t i = 0; i < r.cpu.size(); ++i) r.moved = std::max(r.moved, (r.cpu[i] - r.rest[i]).norm());
+    return r;
+}
+
 } // namespace cudatest

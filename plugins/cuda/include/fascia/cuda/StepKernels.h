@@ -9,8 +9,9 @@
 ///     (Tensor3.h firstPiola) -> f_a = -V P dN_a/dX (TLED eq. (3)), for hexahedra with the
 ///     hourglass forces of fascia/elements/Hourglass.h, written to the element's own slots;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
-///     + m g, held axes zeroed, then v += kick (f/m - alpha v), u += dt v (HEML eq. (32)), held
-///     axes at rest (u = v = 0).
+///     + m g, held axes zeroed, then SemiImplicitEuler (v += kick (f/m - alpha v), u += dt v, HEML
+///     eq. (32)) or CentralDifference, the held axes at their constraint's position and velocity
+///     (at rest, or a PrescribedDisplacement's at t + dt).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/elements/BatchView.h"
 #include "fascia/elements/Hourglass.h"
@@ -118,22 +119,68 @@ FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, i
     return {f0, f1, f2};
 }
 
-/// One step of node `node`: forces, constraints, SemiImplicitEuler's update (HEML eq. (32)).
+/// The force on node `node`: its slots, the external force and m g; the held axes' components
+/// removed (the constraints' projectForces).
 template <class T>
-FASCIA_HD FASCIA_INLINE void nodeStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+FASCIA_HD FASCIA_INLINE void nodeForce(const StepArrays<T>& d, const NodeParams<T>& p, int node, T f[3]) {
     const elements::Vec33<T> fi = gatherForce(d, node);
-    const T m = d.mass[node], im = d.invMass[node];
-    const T f[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1],
-                    fi.z + d.ext[3 * node + 2] + m * p.g[2]};
-    const unsigned held = d.fixed[node];
+    const T m = d.mass[node];
+    const T g[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1], fi.z + d.ext[3 * node + 2] + m * p.g[2]};
+    for (int i = 0; i < 3; ++i) f[i] = d.hold[3 * node + i] != 0 ? T(0) : g[i];
+}
+
+/// Axis i of node `node` at the end of the step: a held axis is put at its constraint's position
+/// and velocity (the constraints' projectPositions, projectVelocities); false for a free axis.
+template <class T>
+FASCIA_HD FASCIA_INLINE bool project(const StepArrays<T>& d, int node, int i, T& u, T& v) {
+    const std::uint32_t h = d.hold[3 * node + i];
+    if (h == 0) return false;
+    u = h == 1 ? T(0) : d.tu[h - 2];
+    v = h == 1 ? T(0) : d.tv[h - 2];
+    return true;
+}
+
+/// One SemiImplicitEuler step of node `node` (HEML eq. (32)): v += kick (f/m - alpha v), u += dt v.
+template <class T>
+FASCIA_HD FASCIA_INLINE void eulerStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+    T f[3];
+    nodeForce(d, p, node, f);
+    const T im = d.invMass[node];
     for (int i = 0; i < 3; ++i) {
-        const bool h = (held >> i) & 1u;
-        const T fc = h ? T(0) : f[i];
         T v = d.v[3 * node + i];
-        v += p.kick * (im * fc - p.alpha * v);
+        v += p.kick * (im * f[i] - p.alpha * v);
         T u = d.u[3 * node + i] + p.dt * v;
-        d.v[3 * node + i] = h ? T(0) : v;
-        d.u[3 * node + i] = h ? T(0) : u;
+        project(d, node, i, u, v);
+        d.u[3 * node + i] = u;
+        d.v[3 * node + i] = v;
+    }
+}
+
+/// One CentralDifference step of node `node` (TLED section 2, damped, as plugins/mechanics/
+/// CentralDifference.cpp): u(n+1) = c1 [2 u(n) - c2 u(n-1) + dt^2 f/m] with c2 = 1 - a and
+/// c1 = 1 / (1 + a) = 1 - b (NodeParams), in the increments d(n) = u(n) - u(n-1):
+///   u(n+1) = u(n) + d(n+1),  d(n+1) = y - b y,  y = d(n) - a d(n) + dt^2 f/m
+/// (since c1 (1 + a) = 1), so that in float the increments, not u, carry the scheme (a float u(n-1)
+/// would lose the velocity to its rounding); v = (3 d(n+1) - d(n)) / (2 dt), the second-order
+/// backward difference, once a step was taken, else c1 (d(n+1)/dt + dt/2 f/m), the exact value for
+/// constant acceleration; on a (re)start d(0) = dt v(0) - dt^2/2 (f/m - alpha v(0)).
+template <class T>
+FASCIA_HD FASCIA_INLINE void centralStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+    T f[3];
+    nodeForce(d, p, node, f);
+    const T im = d.invMass[node], dt = p.dt, dt2 = dt * dt;
+    for (int i = 0; i < 3; ++i) {
+        const T un = d.u[3 * node + i], vn = d.v[3 * node + i];
+        const T dn = p.start ? dt * vn - T(0.5) * dt * dt * (im * f[i] - p.alpha * vn) : d.du[3 * node + i];
+        const T y = dn - p.a * dn + dt2 * im * f[i];
+        const T dnext = y - p.b * y;
+        const T z = dnext / dt + T(0.5) * dt * im * f[i];
+        T v = p.twoSteps ? (3 * dnext - dn) / (2 * dt) : z - p.b * z;
+        T u = un + dnext;
+        // a held axis: the increment to its constraint's position (x(n) of the next step)
+        d.du[3 * node + i] = project(d, node, i, u, v) ? u - un : dnext;
+        d.u[3 * node + i] = u;
+        d.v[3 * node + i] = v;
     }
 }
 

@@ -29,7 +29,12 @@ namespace fascia::cuda {
 ///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
 ///                                formed from displacements, accurate in float; lesson 6)
 ///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
-///   fixed[n]                     held axes, bit i for axis i (FixedConstraint)
+///   hold[3 n + i]                axis i of node n: 0 free, 1 held at rest (FixedConstraint), 2 + j
+///                                following target j (PrescribedDisplacement): its force removed,
+///                                then u = tu[j], v = tv[j] at the end of the step (the last
+///                                constraint that holds the axis decides, as in projectState)
+///   tu[j], tv[j]                 the targets' displacement and velocity at t + dt (set every step)
+///   du[3 n + i]                  CentralDifference: the increment u(n) - u(n-1) of the last step
 template <class T>
 struct StepArrays {
     int nTets = 0, nNodes = 0;
@@ -49,9 +54,12 @@ struct StepArrays {
     const T* ext = nullptr;
     const T* mass = nullptr;
     const T* invMass = nullptr;
-    const std::uint8_t* fixed = nullptr;
+    const std::uint32_t* hold = nullptr;
+    const T* tu = nullptr;
+    const T* tv = nullptr;
     T* u = nullptr;
     T* v = nullptr;
+    T* du = nullptr;
 };
 
 /// What the element kernel needs besides the arrays: the law (by value, its parameters as the
@@ -63,13 +71,18 @@ struct ElementParams {
     elements::Vec33<T> a0, b0;
 };
 
-/// The node kernel's step: g(t) (gravity, scaled by its curve), dt, the velocity kick of this step
-/// (dt, or dt/2 on the first step of the leapfrog start) and the damping alpha
-/// (SemiImplicitEuler, HEML eq. (32)).
+/// The node kernel's step: g(t) (gravity, scaled by its curve), dt and the damping alpha; for
+/// SemiImplicitEuler (HEML eq. (32)) the velocity kick of this step (dt, or dt/2 on the first step of
+/// the leapfrog start); for CentralDifference (TLED section 2) a = alpha dt/2 and b = a / (1 + a)
+/// (its c2 = 1 - a and c1 = 1 / (1 + a) = 1 - b, which in float would hold a to 1e-3 only: b and a
+/// keep it to 1e-7), whether this step (re)starts the scheme (x(-1) from x(0), v(0), a(0)) and
+/// whether a step with this dt came before (the backward-difference velocity).
 template <class T>
 struct NodeParams {
     T g[3];
     T dt, kick, alpha;
+    T a = 0, b = 0;
+    bool start = false, twoSteps = false;
 };
 
 } // namespace fascia::cuda
