@@ -45,15 +45,9 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[Cu
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(law.name, precision);
-    const int steps = 1000;
-    auto ref = core::Simulation::fromString(scene(law, ""));
-    ref->init();
-    for (int s = 0; s < steps; ++s) ref->step();
-    const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps);
-    const auto& mo = ref->state("mo");
-    const double err = displacementError(x, mo.x(), mo.x0());
-    CAPTURE(sci(err));
-    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
 }
 
 TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000 steps", "[CudaStep]") {
@@ -62,15 +56,9 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(meshName(mesh), law.name, precision);
-    const int steps = 1000;
-    auto ref = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
-    ref->init();
-    for (int s = 0; s < steps; ++s) ref->step();
-    const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps, mesh);
-    const auto& mo = ref->state("mo");
-    const double err = displacementError(x, mo.x(), mo.x0());
-    CAPTURE(sci(err));
-    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
 }
 
 TEST_CASE("CudaStep on the GPU follows CentralDifference and PrescribedDisplacement over 1000 steps", "[CudaStep]") {

@@ -66,19 +66,11 @@ TEST_CASE("CudaStep emulated follows the CPU trajectory over 400 steps", "[CudaS
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(law.name, precision);
-    const int steps = 400;
-    auto ref = core::Simulation::fromString(scene(law, ""));
-    ref->init();
-    for (int s = 0; s < steps; ++s) ref->step();
-    const Positions x = trajectoryEnd(law, "<CudaStep emulate=\"true\" blockSize=\"64\" precision=\"" + precision + "\"/>", steps);
-    const auto& mo = ref->state("mo");
-    const double err = displacementError(x, mo.x(), mo.x0());
-    CAPTURE(sci(err));
-    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
-    // the body moved (a trajectory that stayed at rest would compare well too)
-    double moved = 0;
-    for (size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (mo.x()[i] - mo.x0()[i]).norm());
-    CHECK(moved > 1e-5);
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets,
+                           "<CudaStep emulate=\"true\" blockSize=\"64\" precision=\"" + precision + "\"/>", 400);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.moved > 1e-5);  // (a trajectory that stayed at rest would compare well too)
 }
 
 TEST_CASE("CudaStep emulated follows the CPU trajectory of hexahedra with hourglass control over 1000 steps", "[CudaStep]") {
@@ -86,18 +78,10 @@ TEST_CASE("CudaStep emulated follows the CPU trajectory of hexahedra with hourgl
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(meshName(mesh), law.name, precision);
-    const int steps = 1000;
-    auto ref = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
-    ref->init();
-    for (int s = 0; s < steps; ++s) ref->step();
-    const Positions x = trajectoryEnd(law, "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", steps, mesh);
-    const auto& mo = ref->state("mo");
-    const double err = displacementError(x, mo.x(), mo.x0());
-    CAPTURE(sci(err));
-    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
-    double moved = 0;
-    for (size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (mo.x()[i] - mo.x0()[i]).norm());
-    CHECK(moved > 1e-4);
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, emulated(precision), 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.moved > 1e-4);
 }
 
 TEST_CASE("CudaStep emulated follows CentralDifference over 1000 steps", "[CudaStep]") {
