@@ -1,7 +1,7 @@
 // The device step on a GPU: the kernel bodies of StepKernels.h wrapped in __global__ launches, one
 // thread per element or node, over device copies of the StepArraysHost that the emulation uses too.
-// Kept to one file and to the laws of DeviceLaws.h: each law costs one element kernel per precision
-// in nvcc time.
+// Kept to one file and to the laws of DeviceLaws.h: each law costs two element kernels
+// (tetrahedra, hexahedra) per precision in nvcc time.
 #include "DeviceLaws.h"
 #include "StepRunner.h"
 #include "fascia/base/Error.h"
@@ -21,15 +21,27 @@ void check(cudaError_t e, const char* what) {
 }
 
 template <class Law, class T>
-__global__ void elementKernel(StepArrays<T> d, ElementParams<Law, T> p) {
+__global__ void tetKernel(StepArrays<T> d, ElementParams<Law, T> p) {
     const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nTets) elementForces(d, p, e);
+    if (e < d.nTets) tetForces(d, p, e);
+}
+
+template <class Law, class T>
+__global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
+    const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if (e < d.nHexes) hexForces(d, p, e);
 }
 
 template <class T>
-__global__ void nodeKernel(StepArrays<T> d, NodeParams<T> p) {
+__global__ void eulerKernel(StepArrays<T> d, NodeParams<T> p) {
     const int n = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (n < d.nNodes) nodeStep(d, p, n);
+    if (n < d.nNodes) eulerStep(d, p, n);
+}
+
+template <class T>
+__global__ void centralKernel(StepArrays<T> d, NodeParams<T> p) {
+    const int n = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if (n < d.nNodes) centralStep(d, p, n);
 }
 
 template <class T>
@@ -76,7 +88,7 @@ private:
 template <class Law, class T>
 class CudaRunner final : public StepRunner {
 public:
-    CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block) {
+    CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
         const StepArraysHost<T> h = toArrays<T>(s);
         m_tet.upload(h.tet);
         m_slotStart.upload(h.slotStart);
@@ -84,12 +96,21 @@ public:
         m_dN.upload(h.dN);
         m_vol.upload(h.vol);
         m_ef.upload(h.ef);
+        m_hex.upload(h.hex);
+        m_hdN.upload(h.hdN);
+        m_hgC.upload(h.hgC);
+        m_hvol.upload(h.hvol);
+        m_hgK.upload(h.hgK);
+        m_hef.upload(h.hef);
         m_ext.upload(h.ext);
         m_mass.upload(h.mass);
         m_invMass.upload(h.invMass);
         m_u.upload(h.u);
         m_v.upload(h.v);
-        m_fixed.upload(h.fixed);
+        m_hold.upload(h.hold);
+        m_tu.upload(h.tu);
+        m_tv.upload(h.tv);
+        m_du.upload(h.du);
         m_f.upload(h.u);
         m_d.nTets = h.nTets;
         m_d.nNodes = h.nNodes;
@@ -97,14 +118,24 @@ public:
         m_d.dN = m_dN.get();
         m_d.vol = m_vol.get();
         m_d.ef = m_ef.get();
+        m_d.nHexes = h.nHexes;
+        m_d.hex = m_hex.get();
+        m_d.hdN = m_hdN.get();
+        m_d.hgC = m_hgC.get();
+        m_d.hvol = m_hvol.get();
+        m_d.hgK = m_hgK.get();
+        m_d.hef = m_hef.get();
         m_d.slotStart = m_slotStart.get();
         m_d.slots = m_slots.get();
         m_d.ext = m_ext.get();
         m_d.mass = m_mass.get();
         m_d.invMass = m_invMass.get();
-        m_d.fixed = m_fixed.get();
+        m_d.hold = m_hold.get();
+        m_d.tu = m_tu.get();
+        m_d.tv = m_tv.get();
         m_d.u = m_u.get();
         m_d.v = m_v.get();
+        m_d.du = m_du.get();
         m_p.law = law;
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
@@ -122,12 +153,24 @@ public:
         v.assign(b.begin(), b.end());
     }
     void elementPass() override {
-        elementKernel<Law, T><<<grid(m_d.nTets), m_block>>>(m_d, m_p);
-        check(cudaGetLastError(), "the element kernel launch");
+        if (m_d.nTets > 0) {
+            tetKernel<Law, T><<<grid(m_d.nTets), m_block>>>(m_d, m_p);
+            check(cudaGetLastError(), "the tetrahedron kernel launch");
+        }
+        if (m_d.nHexes > 0) {
+            hexKernel<Law, T><<<grid(m_d.nHexes), m_block>>>(m_d, m_p);
+            check(cudaGetLastError(), "the hexahedron kernel launch");
+        }
+    }
+    void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
+        // (the same sizes as at the upload above: the device pointers stay)
+        m_tu.upload(std::vector<T>(tu.begin(), tu.end()));
+        m_tv.upload(std::vector<T>(tv.begin(), tv.end()));
     }
     void nodePass(const NodeParams<double>& p) override {
-        const NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
-        nodeKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
+        const NodeParams<T> q = nodeParamsIn<T>(p);
+        if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
+        else eulerKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
         check(cudaGetLastError(), "the node kernel launch");
     }
     void internalForces(std::vector<double>& f) override {
@@ -141,10 +184,11 @@ public:
 private:
     unsigned grid(int n) const { return static_cast<unsigned>((n + m_block - 1) / m_block); }
     int m_block;
-    DeviceArray<int> m_tet, m_slotStart;
+    DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_ext, m_mass, m_invMass, m_u, m_v, m_f;
-    DeviceArray<std::uint8_t> m_fixed;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<std::uint32_t> m_hold;
+    bool m_central;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
 };

@@ -38,7 +38,13 @@ void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
     if (it == m_bodies.end()) elements::runtimeError(*this, "the state '" + g.state->path() + "' was not adopted at init");
     Body& b = *it;
     b.runner->elementPass();
-    b.runner->nodePass(nodeParams(g, b.setup, t, dt, b.kick.next(dt)));
+    NodeParams<double> p = nodeParams(g, b.setup, t, dt, b.kick.next(dt));
+    b.central.next(dt, p);
+    if (!b.setup.targetAt.empty()) {
+        motionTargets(g, b.setup, t + dt, b.tu, b.tv);
+        b.runner->setTargets(b.tu, b.tv);
+    }
+    b.runner->nodePass(p);
     b.runner->getState(b.u, b.v);
     Positions& x = g.state->x();
     Positions& v = g.state->v();

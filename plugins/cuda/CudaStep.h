@@ -1,13 +1,15 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
-/// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernel on
-/// tetrahedra (the laws of DeviceLaws.h), then a node kernel that sums each node's element forces
-/// in a fixed order, adds ConstantForce and gravity, holds FixedConstraint's axes and integrates
-/// with SemiImplicitEuler (HEML eq. (32)), in float or double. A component it cannot run is a
-/// located error naming it; no device is a located error too (exit 2): it never falls back to the
-/// host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
+/// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernels on
+/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h), then a node kernel that sums each
+/// node's element forces in a fixed order, adds ConstantForce and gravity, integrates with
+/// SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the axes of FixedConstraint and
+/// PrescribedDisplacement where they hold them, in float or double. A component it cannot run is
+/// a located error naming it; no device is a located error too (exit 2): it never falls back to
+/// the host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
 /// This slice copies x and v back after every step, so that observers and the finite check read
-/// them as on the CPU.
+/// them as on the CPU (and PrescribedDisplacement's targets are read from the host state after
+/// projectState, motionTargets).
 #include "StepRunner.h"
 #include "fascia/sim/Mechanics.h"
 
@@ -34,6 +36,8 @@ private:
         StepSetup setup;
         std::unique_ptr<StepRunner> runner;
         KickRule kick;
+        CentralRule central;
+        std::vector<double> tu, tv;  ///< the targets of the step (motionTargets)
         std::vector<double> u, v;
     };
     std::vector<Body> m_bodies;

@@ -1,13 +1,14 @@
 #pragma once
-/// The laws the device step runs, in one list: each costs one element kernel per precision in the
-/// .cu file (nvcc time in every build), so the list grows as the GPU path is tested law by law.
-/// A material not in it is a located error naming it (CudaStep), never a host fallback.
+/// The laws the device step runs, in one list: every built-in law (materials::BuiltinMaterials,
+/// each tested in test_cuda_emulation against TLEDForceField). Each costs two element kernels
+/// (tetrahedra, hexahedra) per precision in the .cu file (nvcc time in every build). A material not
+/// in it (a user's law) is a located error naming it (CudaStep), never a host fallback.
 #include "fascia/elements/LawDispatch.h"
 #include "fascia/materials/BuiltinMaterials.h"
 
 namespace fascia::cuda {
 
-using DeviceMaterials = materials::MaterialList<materials::NeoHookean, materials::CompressibleNeoHookean, materials::TransverselyIsotropic>;
+using DeviceMaterials = materials::BuiltinMaterials;
 
 namespace detail {
 template <class F, class M, class... Ms>

@@ -10,7 +10,7 @@ namespace fascia::cuda {
 template <class Law, class T>
 class EmulatedRunner final : public StepRunner {
 public:
-    EmulatedRunner(const StepSetup& s, const Law& law) : m_dev(toArrays<T>(s)) {
+    EmulatedRunner(const StepSetup& s, const Law& law) : m_dev(toArrays<T>(s)), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
         m_p.law = law;
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
@@ -26,12 +26,20 @@ public:
     }
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
-        for (int e = 0; e < d.nTets; ++e) elementForces(d, m_p, e);
+        for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
+        for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
+    }
+    void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
+        m_dev.tu.assign(tu.begin(), tu.end());
+        m_dev.tv.assign(tv.begin(), tv.end());
     }
     void nodePass(const NodeParams<double>& p) override {
         const StepArrays<T> d = m_dev.view();
-        const NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
-        for (int n = 0; n < d.nNodes; ++n) nodeStep(d, q, n);
+        const NodeParams<T> q = nodeParamsIn<T>(p);
+        for (int n = 0; n < d.nNodes; ++n) {
+            if (m_central) centralStep(d, q, n);
+            else eulerStep(d, q, n);
+        }
     }
     void internalForces(std::vector<double>& f) override {
         const StepArrays<T> d = m_dev.view();
@@ -46,6 +54,7 @@ public:
 
 private:
     StepArraysHost<T> m_dev;  ///< the "device" copy
+    bool m_central;           ///< CentralDifference, else SemiImplicitEuler
     ElementParams<Law, T> m_p;
 };
 

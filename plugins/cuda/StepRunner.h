@@ -17,9 +17,11 @@ public:
     virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
     /// Downloads them.
     virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
-    /// The element kernel over every tetrahedron.
+    /// The element kernels over every tetrahedron and every hexahedron.
     virtual void elementPass() = 0;
-    /// The node kernel over every node (after an element pass).
+    /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets).
+    virtual void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) = 0;
+    /// The node kernel of the setup's integrator over every node (after an element pass).
     virtual void nodePass(const NodeParams<double>& p) = 0;
     /// The internal nodal forces of the last element pass, each node's slots summed (3 per node;
     /// for tests).

@@ -6,6 +6,7 @@
 #include "fascia/scene/Node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace fascia::cuda {
@@ -23,9 +24,11 @@ const P* paramOf(const core::Component& c, const std::string& name) {
            {"remove CudaStep to run this scene on the CPU"});
 }
 
-/// The integrator's parameters: SemiImplicitEuler only.
+/// The integrator and its parameters: SemiImplicitEuler or CentralDifference.
 void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
-    if (integ.className() != "SemiImplicitEuler") unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler)");
+    if (integ.className() == "CentralDifference") s.scheme = StepSetup::Scheme::CentralDifference;
+    else if (integ.className() != "SemiImplicitEuler")
+        unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler or CentralDifference)");
     if (const auto* d = paramOf<core::Param<double>>(integ, "damping")) s.damping = d->get();
     if (const auto* h = paramOf<core::Param<bool>>(integ, "halfStepStart")) s.halfStepStart = h->get();
 }
@@ -33,7 +36,6 @@ void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
 /// The material and the options of the TLED force field, each checked against what the device
 /// step runs.
 void readTLED(const core::BaseForceField& ff, StepSetup& s) {
-    if (ff.hexahedra() && !ff.hexahedra()->empty()) unsupported(ff, "TLEDForceField on hexahedra");
     const auto* groups = paramOf<core::Param<elements::GroupMaterialList>>(ff, "groupMaterials");
     const auto* link = paramOf<core::Link<materials::BaseMaterial>>(ff, "material");
     if (!groups || !link) unsupported(ff, "this TLEDForceField (its parameters are not the ones the device step knows)");
@@ -41,6 +43,7 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     for (const char* name : {"fibreArray", "fibreArray2"})
         if (const auto* p = ff.findParam(name); p && p->isSet()) unsupported(ff, std::string(name) + " (fibre directions per element)");
     if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
+    if (const auto* k = paramOf<core::Param<double>>(ff, "hourglassStiffness")) s.hourglass = k->get();
     const materials::BaseMaterial* m = elements::defaultMaterial(ff, *link, *groups);
     if (!m) unsupported(ff, "a TLEDForceField without a material");
     const bool onDevice = selectDeviceLaw(m, [](auto tag, const materials::BaseMaterial*) {
@@ -73,21 +76,73 @@ void tetGeometry(const core::BaseForceField& ff, const Positions& X, const Tetra
     }
 }
 
+/// Rest geometry of the hexahedra: the uniform-strain dN_a/dX, volumes, hourglass vectors c_q and
+/// stiffnesses K, as TLEDForceField computes them (plugins/tled/TLEDElements.cpp).
+void hexGeometry(const core::BaseForceField& ff, const Positions& X, const Hexahedra& hexes, StepSetup& s) {
+    const size_t n = hexes.size();
+    s.hex.resize(8 * n);
+    s.hdN.resize(24 * n);
+    s.hgC.resize(12 * n);
+    s.hvol.resize(n);
+    s.hgK.resize(n);
+    for (size_t e = 0; e < n; ++e) {
+        Vec3 P[8];
+        for (size_t a = 0; a < 8; ++a) {
+            const int node = hexes[e][a];
+            if (node < 0 || static_cast<size_t>(node) >= X.size()) ff.fail("hexahedron " + std::to_string(e) + " has a node out of range");
+            P[a] = X[static_cast<size_t>(node)];
+            s.hex[a * n + e] = node;
+        }
+        double V, dN[24], sumDN2, c[12];
+        elements::hexUniformStrain(P, V, dN, sumDN2);
+        elements::hexHourglassVectors(P, c);
+        for (size_t r = 0; r < 24; ++r) s.hdN[r * n + e] = dN[r];
+        for (size_t r = 0; r < 12; ++r) s.hgC[r * n + e] = c[r];
+        s.hvol[e] = std::abs(V);
+        s.hgK[e] = elements::hexHourglassStiffness(s.hourglass, *s.material, s.hvol[e], sumDN2);
+    }
+}
+
+/// The hold codes of the nodes' axes (StepArrays::hold), the constraints in their order so that the
+/// last one that holds an axis decides, as in projectState; a moving axis gets a target of its own.
+void holdCodes(const core::MechanicalGroup& g, StepSetup& s) {
+    s.hold.assign(3 * static_cast<size_t>(s.nNodes), 0);
+    s.targetAt.clear();
+    for (const core::BaseConstraint* c : g.constraints) {
+        const std::array<bool, 3> axes = c->constrainedAxes();
+        for (int node : c->constrainedNodes())
+            for (int i = 0; i < 3; ++i) {
+                if (!axes[static_cast<size_t>(i)]) continue;
+                std::uint32_t& h = s.hold[3 * static_cast<size_t>(node) + static_cast<size_t>(i)];
+                if (!c->prescribesMotion()) {
+                    h = 1;
+                } else if (h < 2) {
+                    h = static_cast<std::uint32_t>(2 + s.targetAt.size());
+                    s.targetAt.push_back(3 * node + i);
+                }
+            }
+    }
+}
+
 } // namespace
 
-void buildSlots(int nTets, int nNodes, const std::vector<int>& tet, std::vector<int>& slotStart, std::vector<std::uint32_t>& slots) {
-    const size_t n = static_cast<size_t>(nTets);
-    slotStart.assign(static_cast<size_t>(nNodes) + 1, 0);
-    for (size_t k = 0; k < 4 * n; ++k) ++slotStart[static_cast<size_t>(tet[k]) + 1];
-    for (size_t i = 0; i < static_cast<size_t>(nNodes); ++i) slotStart[i + 1] += slotStart[i];
-    std::vector<int> fill(slotStart.begin(), slotStart.end() - 1);
-    slots.resize(4 * n);
-    // by element, then corner: the order of the node's sum (a node is one corner of an element at most)
-    for (size_t e = 0; e < n; ++e)
-        for (size_t a = 0; a < 4; ++a) {
-            const int node = tet[a * n + e];
-            slots[static_cast<size_t>(fill[static_cast<size_t>(node)]++)] = static_cast<std::uint32_t>(4 * e + a);
-        }
+void buildSlots(StepSetup& s) {
+    const size_t nT = static_cast<size_t>(s.nTets), nH = static_cast<size_t>(s.nHexes);
+    s.slotStart.assign(static_cast<size_t>(s.nNodes) + 1, 0);
+    for (int node : s.tet) ++s.slotStart[static_cast<size_t>(node) + 1];
+    for (int node : s.hex) ++s.slotStart[static_cast<size_t>(node) + 1];
+    for (size_t i = 0; i < static_cast<size_t>(s.nNodes); ++i) s.slotStart[i + 1] += s.slotStart[i];
+    std::vector<int> fill(s.slotStart.begin(), s.slotStart.end() - 1);
+    s.slots.resize(4 * nT + 8 * nH);
+    // by element (tetrahedra, then hexahedra), then corner: the order of the node's sum (a node is one
+    // corner of an element at most)
+    const auto add = [&](int node, size_t element, size_t a) {
+        s.slots[static_cast<size_t>(fill[static_cast<size_t>(node)]++)] = static_cast<std::uint32_t>(8 * element + a);
+    };
+    for (size_t e = 0; e < nT; ++e)
+        for (size_t a = 0; a < 4; ++a) add(s.tet[a * nT + e], e, a);
+    for (size_t e = 0; e < nH; ++e)
+        for (size_t a = 0; a < 8; ++a) add(s.hex[a * nH + e], nT + e, a);
 }
 
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g) {
@@ -112,23 +167,25 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     }
     if (!tled) owner.fail("the state '" + state.path() + "' has no TLEDForceField: the device step runs TLED only");
     for (const core::BaseConstraint* c : g.constraints)
-        if (c->className() != "FixedConstraint") unsupported(*c, c->className());
-    if (nNodes >= (size_t(1) << 31) || tled->tetrahedra()->size() >= (size_t(1) << 30))
+        if (c->className() != "FixedConstraint" && c->className() != "PrescribedDisplacement") unsupported(*c, c->className());
+    const Tetrahedra noTets;
+    const Hexahedra noHexes;
+    const Tetrahedra& tets = tled->tetrahedra() ? *tled->tetrahedra() : noTets;
+    const Hexahedra& hexes = tled->hexahedra() ? *tled->hexahedra() : noHexes;
+    // (the slots hold 8 e + a in 32 bits; every array index stays below 2^31)
+    if (nNodes >= (size_t(1) << 29) || tets.size() + hexes.size() >= (size_t(1) << 26))
         owner.fail("the mesh is too large for the device step's 32-bit indices");
     for (size_t i = 0; i < nNodes; ++i)
         for (int c = 0; c < 3; ++c) s.ext[3 * i + static_cast<size_t>(c)] = ext[i][c];
     s.nNodes = static_cast<int>(nNodes);
-    s.nTets = static_cast<int>(tled->tetrahedra()->size());
-    tetGeometry(*tled, state.x0(), *tled->tetrahedra(), s);
-    buildSlots(s.nTets, s.nNodes, s.tet, s.slotStart, s.slots);
+    s.nTets = static_cast<int>(tets.size());
+    s.nHexes = static_cast<int>(hexes.size());
+    tetGeometry(*tled, state.x0(), tets, s);
+    hexGeometry(*tled, state.x0(), hexes, s);
+    buildSlots(s);
     s.mass = g.mass;
     s.invMass = g.invMass;
-    s.fixed.assign(nNodes, 0);
-    for (const core::BaseConstraint* c : g.constraints) {
-        const std::array<bool, 3> axes = c->constrainedAxes();
-        const std::uint8_t bits = static_cast<std::uint8_t>((axes[0] ? 1 : 0) | (axes[1] ? 2 : 0) | (axes[2] ? 4 : 0));
-        for (int node : c->constrainedNodes()) s.fixed[static_cast<size_t>(node)] |= bits;
-    }
+    holdCodes(g, s);
     return s;
 }
 
@@ -139,7 +196,25 @@ NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s
     p.dt = dt;
     p.kick = kick;
     p.alpha = s.damping;
+    p.a = 0.5 * s.damping * dt;  // CentralDifference's c2 = 1 - a, c1 = 1 - b
+    p.b = p.a / (1.0 + p.a);
     return p;
+}
+
+void motionTargets(core::MechanicalGroup& g, const StepSetup& s, double tEnd, std::vector<double>& tu, std::vector<double>& tv) {
+    tu.resize(s.targetAt.size());
+    tv.resize(s.targetAt.size());
+    if (s.targetAt.empty()) return;
+    g.projectState(tEnd);
+    const Positions& x = g.state->x();
+    const Positions& X = g.state->x0();
+    const Positions& v = g.state->v();
+    for (size_t j = 0; j < s.targetAt.size(); ++j) {
+        const size_t n = static_cast<size_t>(s.targetAt[j] / 3);
+        const int i = s.targetAt[j] % 3;
+        tu[j] = x[n][i] - X[n][i];
+        tv[j] = v[n][i];
+    }
 }
 
 std::string deviceLawNames() {

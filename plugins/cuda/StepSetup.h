@@ -14,39 +14,44 @@ namespace fascia::cuda {
 /// Everything the kernels read, in double and in the layout of StepArrays (see there), built once
 /// from a group by buildStepSetup.
 struct StepSetup {
-    int nTets = 0, nNodes = 0;
-    std::vector<int> tet;
+    int nTets = 0, nHexes = 0, nNodes = 0;
+    std::vector<int> tet, hex;
     std::vector<double> dN, vol;
+    std::vector<double> hdN, hgC, hvol, hgK;  ///< hexahedra
     std::vector<int> slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<double> ext, mass, invMass;
-    std::vector<std::uint8_t> fixed;
+    std::vector<std::uint32_t> hold;  ///< 3 per node, see StepArrays
+    std::vector<int> targetAt;        ///< target j is axis targetAt[j] % 3 of node targetAt[j] / 3
     const materials::BaseMaterial* material = nullptr;  ///< the elements' one material
     double J0 = 0.4;
+    double hourglass = 0;  ///< TLEDForceField's hourglassStiffness (kappa of the stiffnesses hgK)
     elements::Vec33<double> a0{1, 0, 0}, b0{0, 1, 0};  ///< the material's fibre directions
-    double damping = 0;                                ///< SemiImplicitEuler's alpha
+    enum class Scheme { SemiImplicitEuler, CentralDifference } scheme = Scheme::SemiImplicitEuler;
+    double damping = 0;                                ///< the integrator's alpha
     bool halfStepStart = true;                         ///< SemiImplicitEuler's leapfrog start
 };
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
-/// tetrahedra with one built-in law of DeviceLaws.h, FixedConstraint, ConstantForce without a
-/// curve, LumpedMass, SemiImplicitEuler) and builds its arrays. Anything else is a located error at
+/// tetrahedra and hexahedra with one built-in law of DeviceLaws.h, FixedConstraint,
+/// PrescribedDisplacement, ConstantForce without a curve, the masses, SemiImplicitEuler or
+/// CentralDifference) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
 /// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g);
 
-/// The slot lists of a tetrahedral mesh (tet as in StepArrays): slotStart (nNodes + 1) and slots.
-void buildSlots(int nTets, int nNodes, const std::vector<int>& tet, std::vector<int>& slotStart, std::vector<std::uint32_t>& slots);
+/// The slot lists of s's elements (tet and hex as in StepArrays): s.slotStart (nNodes + 1) and s.slots.
+void buildSlots(StepSetup& s);
 
 /// The arrays of a setup in the scalar T, as host vectors (what an upload copies to the device;
 /// the emulation's "device" copy is a second set of them).
 template <class T>
 struct StepArraysHost {
-    int nTets = 0, nNodes = 0;
-    std::vector<int> tet, slotStart;
+    int nTets = 0, nHexes = 0, nNodes = 0;
+    std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
-    std::vector<T> dN, vol, ef, ext, mass, invMass, u, v;
-    std::vector<std::uint8_t> fixed;
+    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, ext, mass, invMass, u, v, tu, tv, du;
+    std::vector<std::uint32_t> hold;
 
     /// The StepArrays over these vectors.
     StepArrays<T> view() {
@@ -57,19 +62,29 @@ struct StepArraysHost {
         d.dN = dN.data();
         d.vol = vol.data();
         d.ef = ef.data();
+        d.nHexes = nHexes;
+        d.hex = hex.data();
+        d.hdN = hdN.data();
+        d.hgC = hgC.data();
+        d.hvol = hvol.data();
+        d.hgK = hgK.data();
+        d.hef = hef.data();
         d.slotStart = slotStart.data();
         d.slots = slots.data();
         d.ext = ext.data();
         d.mass = mass.data();
         d.invMass = invMass.data();
-        d.fixed = fixed.data();
+        d.hold = hold.data();
+        d.tu = tu.data();
+        d.tv = tv.data();
         d.u = u.data();
         d.v = v.data();
+        d.du = du.data();
         return d;
     }
 };
 
-/// The arrays of s converted to T, with u and v zero.
+/// The arrays of s converted to T, with u, v, the targets and du zero.
 template <class T>
 StepArraysHost<T> toArrays(const StepSetup& s) {
     const auto conv = [](const std::vector<double>& a) { return std::vector<T>(a.begin(), a.end()); };
@@ -82,12 +97,22 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.dN = conv(s.dN);
     h.vol = conv(s.vol);
     h.ef.assign(12 * static_cast<size_t>(s.nTets), T(0));
+    h.nHexes = s.nHexes;
+    h.hex = s.hex;
+    h.hdN = conv(s.hdN);
+    h.hgC = conv(s.hgC);
+    h.hvol = conv(s.hvol);
+    h.hgK = conv(s.hgK);
+    h.hef.assign(24 * static_cast<size_t>(s.nHexes), T(0));
     h.ext = conv(s.ext);
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);
     h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));
     h.v.assign(3 * static_cast<size_t>(s.nNodes), T(0));
-    h.fixed = s.fixed;
+    h.hold = s.hold;
+    h.tu.assign(s.targetAt.size(), T(0));
+    h.tv.assign(s.targetAt.size(), T(0));
+    h.du.assign(3 * static_cast<size_t>(s.nNodes), T(0));
     return h;
 }
 
@@ -110,8 +135,43 @@ struct KickRule {
     }
 };
 
+/// Tracks CentralDifference's history across steps as CentralDifference::step does: a (re)start on
+/// the first step and after a change of dt (its u(n-1) is for the old step), the backward-difference
+/// velocity once a step with this dt was taken.
+struct CentralRule {
+    bool started = false;
+    double lastDt = 0;
+    long steps = 0;
+    /// sets p.start and p.twoSteps for a step of dt
+    void next(double dt, NodeParams<double>& p) {
+        p.start = !started || lastDt != dt;
+        if (p.start) steps = 0;
+        started = true;
+        lastDt = dt;
+        p.twoSteps = steps > 0;
+        ++steps;
+    }
+};
+
 /// The node kernel's parameters of the step from t to t + dt in double (g(t) with the group's
-/// gravity curve).
+/// gravity curve; the kick for SemiImplicitEuler, a and b for CentralDifference).
 NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s, double t, double dt, double kick);
+
+/// The same in the scalar T of a runner.
+template <class T>
+NodeParams<T> nodeParamsIn(const NodeParams<double>& p) {
+    NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
+    q.a = T(p.a);
+    q.b = T(p.b);
+    q.start = p.start;
+    q.twoSteps = p.twoSteps;
+    return q;
+}
+
+/// The targets at the end tEnd = t + dt of a step (StepArrays tu, tv): the group's constraints
+/// project the host state at tEnd in their order (projectState, through the core's role only),
+/// which then gives each target's displacement and velocity (the step's result overwrites the host
+/// state after it).
+void motionTargets(core::MechanicalGroup& g, const StepSetup& s, double tEnd, std::vector<double>& tu, std::vector<double>& tv);
 
 } // namespace fascia::cuda

@@ -99,6 +99,18 @@ void hexUniformStrain(const Vec3 (&P)[8], double& V, double dN[24], double& sumD
         }
 }
 
+void hexHourglassVectors(const Vec3 (&P)[8], double c[12]) {
+    for (int r = 0; r < 12; ++r) c[r] = 0;
+    for (int q = 0; q < 4; ++q)
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) c[3 * q + i] += kHourglass[q][a] * P[a][i];
+}
+
+double hexHourglassStiffness(double kappa, const materials::BaseMaterial& m, double absV, double sumDN2) {
+    const double pModulus = m.bulkModulus() + 4.0 / 3.0 * m.shearModulus();
+    return kappa * pModulus * absV * sumDN2 / 8.0;
+}
+
 TetRest tetRest(const core::Component& owner, const Positions& X, const Tetrahedra& tets) {
     TetRest r;
     for (size_t e = 0; e < tets.size(); ++e) {

@@ -114,7 +114,6 @@ struct TLEDForceField::Impl {
         int kind = 0;
         const materials::BaseMaterial* material = nullptr;
         unsigned uses = 0;
-        double pModulus = 0;        ///< bulk + 4/3 shear (Pa)
         const void* law = nullptr;  ///< the inlined law, when the material is a built-in one
         KernelFn fn = nullptr;
         double a0[3] = {1, 0, 0}, b0[3] = {0, 1, 0};  ///< fibre directions when not given per element

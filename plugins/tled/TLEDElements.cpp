@@ -202,10 +202,8 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, s
             ff.fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + fmt(V) + " m^3)");
         }
         // hourglass control: gamma_q = h_q - (c_q . dN/dX), c_q = sum_a h_qa X_a; the loop needs c_q only
-        double hc[12] = {};
-        for (int q = 0; q < 4; ++q)
-            for (int a = 0; a < 8; ++a)
-                for (int i = 0; i < 3; ++i) hc[3 * q + i] += elements::kHourglass[q][a] * P[a][i];
+        double hc[12];
+        elements::hexHourglassVectors(P, hc);
         const double absV = std::abs(V);
         for (int a = 0; a < 8; ++a) s.nodes.push_back(su.internalOf[static_cast<size_t>(h[a])]);
         for (int r = 0; r < 24; ++r) s.put(m, k, r, dN[r]);
@@ -213,7 +211,7 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, s
         if (s.volRow >= 0) s.put(m, k, s.volRow, absV);
         s.vol.push_back(absV);
         s.orig.push_back(static_cast<int>(e));
-        s.hgK.push_back(hourglass * g.pModulus * absV * sumB2 / 8.0);
+        s.hgK.push_back(elements::hexHourglassStiffness(hourglass, *g.material, absV, sumB2));
         s.length.push_back(elements::hexCharacteristicLength(P, absV));
         putFibres(im, su, g, su.tets.size() + e, s, m, k);
     }
@@ -311,7 +309,6 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
         g.kind = kind;
         g.material = m;
         g.uses = m->uses();
-        g.pModulus = m->bulkModulus() + 4.0 / 3.0 * m->shearModulus();
         chooseKernel(g, im.mixed);
         im.groups.push_back(g);
         su.perGroup.emplace_back();

@@ -15,6 +15,7 @@
 #include "TLEDData.h"
 
 #include "fascia/elements/BatchView.h"
+#include "fascia/elements/Hourglass.h"
 #include "fascia/materials/Material.h"
 
 #include <algorithm>
@@ -95,24 +96,6 @@ FASCIA_INLINE void gather(const ElementSet<NN>& es, size_t e0, int n, const doub
     }
 }
 
-/// Hourglass control of a hexahedron (Flanagan-Belytschko): h_q = sum_a gamma_qa u_a with
-/// gamma_qa = h_qa - c_q . dN_a/dX, c_q = sum_b h_qb X_b precomputed, so h_q = sum_a h_qa u_a - (F - I) c_q;
-/// energy K/2 sum_q |h_q|^2. The sums over the nodes with the +-1 entries of kHourglass are sums and
-/// differences of node pairs. Component j, g = row j of F - I.
-template <class T>
-FASCIA_INLINE void hourglassModes(Batch<8, T>& s, const NodeRows<kBatch, T>& c, int k, int j, T g0, T g1, T g2) {
-    const auto& u = s.u.v;
-    const T d01 = u[0][j][k] - u[1][j][k], d23 = u[2][j][k] - u[3][j][k], d45 = u[4][j][k] - u[5][j][k],
-                 d67 = u[6][j][k] - u[7][j][k];
-    const T a01 = u[0][j][k] + u[1][j][k], a23 = u[2][j][k] + u[3][j][k], a45 = u[4][j][k] + u[5][j][k],
-                 a67 = u[6][j][k] + u[7][j][k];
-    const T X = d01 + d23, Y = d45 + d67;
-    s.Kh[j][k] = (X + Y) - (g0 * c.at(0, 0, k) + g1 * c.at(0, 1, k) + g2 * c.at(0, 2, k));                // ( 1,-1, 1,-1, 1,-1, 1,-1)
-    s.Kh[3 + j][k] = (a01 - a23) + (a67 - a45) - (g0 * c.at(1, 0, k) + g1 * c.at(1, 1, k) + g2 * c.at(1, 2, k));  // ( 1, 1,-1,-1,-1,-1, 1, 1)
-    s.Kh[6 + j][k] = (d01 - d23) + (d67 - d45) - (g0 * c.at(2, 0, k) + g1 * c.at(2, 1, k) + g2 * c.at(2, 2, k));  // ( 1,-1,-1, 1,-1, 1, 1,-1)
-    s.Kh[9 + j][k] = (Y - X) - (g0 * c.at(3, 0, k) + g1 * c.at(3, 1, k) + g2 * c.at(3, 2, k));            // (-1, 1,-1, 1, 1,-1, 1,-1)
-}
-
 /// F = I + sum_a u_a (x) dN_a/dX and the invariants of C = F^T F the law uses (U: BaseMaterial::Uses).
 template <int NN, unsigned U, class T>
 FASCIA_INLINE void gradientAndInvariants(Batch<NN, T>& s, int n, const T* __restrict G, const Fibres<T>& fib) {
@@ -125,10 +108,7 @@ FASCIA_INLINE void gradientAndInvariants(Batch<NN, T>& s, int n, const T* __rest
         s.F.set(k, F);
         if constexpr (NN == 8) {
             // computed here, where u and F are at hand (a pass of its own reloaded them)
-            const NodeRows<kBatch, T> c{G + ElementSet<NN>::kHgRow * kBatch};
-            hourglassModes(s, c, k, 0, F.xx - 1, F.xy, F.xz);
-            hourglassModes(s, c, k, 1, F.yx, F.yy - 1, F.yz);
-            hourglassModes(s, c, k, 2, F.zx, F.zy, F.zz - 1);
+            hourglassModes(s.u, NodeRows<kBatch, T>{G + ElementSet<NN>::kHgRow * kBatch}, k, F, s.Kh[0]);
         }
         const Invariants3<T> in = invariants<(U & BaseMaterial::UsesI2) != 0>(F);
         s.I1[k] = in.I1;
@@ -304,8 +284,7 @@ FASCIA_INLINE void addEnergy(const Batch<NN, T>& s, int n, const ElementSet<NN>&
 }
 
 /// f_a = -V P dN_a/dX (TLED eq. (1)-(3)); hexahedra with hourglass control:
-/// -K sum_q gamma_qa h_q = -K sum_q h_qa h_q + M dN_a/dX, M = K sum_q h_q (x) c_q, so
-/// f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q.
+/// f_a = -(V P - M) dN_a/dX - K sum_q h_qa h_q (hexNodalForces, fascia/elements/Hourglass.h).
 /// (In float the volume comes from the pack's volume row.)
 template <int NN, class T>
 FASCIA_INLINE void nodalForces(Batch<NN, T>& s, int n, const ElementSet<NN>& es, size_t e0, const T* __restrict G) {
@@ -317,9 +296,8 @@ FASCIA_INLINE void nodalForces(Batch<NN, T>& s, int n, const ElementSet<NN>& es,
         T V;
         if constexpr (Batch<NN, T>::kMixed) V = vrow[k];
         else V = es.vol[e];
-        T P0 = V * s.P.m[0][k], P1 = V * s.P.m[1][k], P2 = V * s.P.m[2][k], P3 = V * s.P.m[3][k], P4 = V * s.P.m[4][k],
-               P5 = V * s.P.m[5][k], P6 = V * s.P.m[6][k], P7 = V * s.P.m[7][k], P8 = V * s.P.m[8][k];
-        Mat33<T> P{P0, P1, P2, P3, P4, P5, P6, P7, P8};
+        const Mat33<T> P{V * s.P.m[0][k], V * s.P.m[1][k], V * s.P.m[2][k], V * s.P.m[3][k], V * s.P.m[4][k],
+                         V * s.P.m[5][k], V * s.P.m[6][k], V * s.P.m[7][k], V * s.P.m[8][k]};
         if constexpr (NN == 4) {
             // (components as scalars: a Vec33 here is privatised by omp simd into an array of
             // structs, which the float loop cannot store 16 lanes at a time)
@@ -339,38 +317,8 @@ FASCIA_INLINE void nodalForces(Batch<NN, T>& s, int n, const ElementSet<NN>& es,
             s.f.v[0][1][k] = -s1;
             s.f.v[0][2][k] = -s2;
         } else {
-            const NodeRows<kBatch, T> hgC{G + ElementSet<NN>::kHgRow * kBatch};
-            const T K = static_cast<T>(es.hgK[e]);
-            T r[3][8];  // K sum_q h_qa h_q per component, the pair sums of hourglassModes reversed
-#pragma GCC unroll 3
-            for (int j = 0; j < 3; ++j) {
-                const T g0 = K * s.Kh[j][k], g1 = K * s.Kh[3 + j][k], g2 = K * s.Kh[6 + j][k], g3 = K * s.Kh[9 + j][k];
-                const T p = g0 + g2, m = g0 - g2, sp = g1 + g3, sm = g1 - g3;
-                r[j][0] = p + sm;
-                r[j][1] = sp - p;
-                r[j][2] = m - sp;
-                r[j][3] = -m - sm;
-                r[j][4] = m - sm;
-                r[j][5] = -m - sp;
-                r[j][6] = p + sp;
-                r[j][7] = sm - p;
-            }
-#pragma GCC unroll 4
-            for (int q = 0; q < 4; ++q) {
-                const T c0 = hgC.at(q, 0, k), c1 = hgC.at(q, 1, k), c2 = hgC.at(q, 2, k);
-                const T k0 = K * s.Kh[3 * q][k], k1 = K * s.Kh[3 * q + 1][k], k2 = K * s.Kh[3 * q + 2][k];
-                P0 -= k0 * c0; P1 -= k0 * c1; P2 -= k0 * c2;
-                P3 -= k1 * c0; P4 -= k1 * c1; P5 -= k1 * c2;
-                P6 -= k2 * c0; P7 -= k2 * c1; P8 -= k2 * c2;
-            }
-            // (fully unrolled: a loop left over the nodes turns the dN loads into emulated gathers)
-#pragma GCC unroll 8
-            for (int a = 0; a < NN; ++a) {
-                const T g0 = dN.at(a, 0, k), g1 = dN.at(a, 1, k), g2 = dN.at(a, 2, k);
-                s.f.v[a][0][k] = -(P0 * g0 + P1 * g1 + P2 * g2) - r[0][a];
-                s.f.v[a][1][k] = -(P3 * g0 + P4 * g1 + P5 * g2) - r[1][a];
-                s.f.v[a][2][k] = -(P6 * g0 + P7 * g1 + P8 * g2) - r[2][a];
-            }
+            const NodeRows<kBatch, T> h{s.Kh[0]}, hgC{G + ElementSet<NN>::kHgRow * kBatch};
+            hexNodalForces(P, static_cast<T>(es.hgK[e]), h, hgC, dN, k, s.f);
         }
     }
 }

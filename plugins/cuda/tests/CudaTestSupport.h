@@ -1,8 +1,10 @@
 #pragma once
 // Helpers for the cuda plugin's tests (the CPU emulation and the device tests): scenes of a small
-// cantilever (a 2 x 2 x 3 cell box of tetrahedra, fixed at z = 0, pulled at z = 0.03, under gravity)
+// cantilever (a 2 x 2 x 3 cell box of tetrahedra, hexahedra or both, fixed at z = 0, pulled at
+// z = 0.03, under gravity)
 // with each law of the device step, the forces of TLEDForceField at a deformed state, and the
 // arrays the device step builds for them.
+#include "DeviceLaws.h"
 #include "StepRunner.h"
 
 #include "fascia/sim/Simulation.h"
@@ -14,7 +16,9 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <utility>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace cudatest {
@@ -29,23 +33,77 @@ struct Law {
     std::string name, element;
 };
 
+/// Every law of the device step (cuda::DeviceMaterials) with its example parameters (kExample:
+/// fibre directions included), in list order.
 inline std::vector<Law> deviceLaws() {
-    return {{"NeoHookean", "<NeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\"/>"},
-            {"CompressibleNeoHookean", "<CompressibleNeoHookean name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.4\"/>"},
-            {"TransverselyIsotropic",
-             "<TransverselyIsotropic name=\"mat\" youngModulus=\"3000\" poissonRatio=\"0.45\" eta=\"6000\" direction=\"1 1 2\"/>"}};
+    std::vector<Law> out;
+    fascia::materials::detail::forEachIn(
+        [&](auto* tag) {
+            const std::string name = std::decay_t<decltype(*tag)>::kName;
+            std::string element = "<" + name + " name=\"mat\"";
+            for (const auto& [key, value] : fascia::materials::exampleParameters(name)) element += " " + key + "=\"" + value + "\"";
+            out.push_back({name, element + "/>"});
+        },
+        cuda::DeviceMaterials{});
+    return out;
+}
+
+/// The law of that name from deviceLaws().
+inline Law deviceLaw(const std::string& name) {
+    for (const Law& l : deviceLaws())
+        if (l.name == name) return l;
+    FAIL("no device law " << name);
+    return {};
+}
+
+/// The cantilever's elements: the grid's 6 tetrahedra per cell, its hexahedra, or hexahedra in the
+/// bottom layer of cells (z < 0.01) and tetrahedra above (the same 36 nodes in every case).
+enum class Mesh { Tets, Hexes, Mixed };
+
+inline std::string meshName(Mesh m) { return m == Mesh::Tets ? "tetrahedra" : m == Mesh::Hexes ? "hexahedra" : "mixed"; }
+
+/// The TLEDForceField attributes of the mixed mesh: its elements given explicitly, in the grid's
+/// node numbering (node i + 3 (j + 3 k) at 0.01 (i, j, k)); each tetrahedron positively oriented.
+inline std::string mixedElements() {
+    const auto id = [](int i, int j, int k) { return i + 3 * (j + 3 * k); };
+    static const int T[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+    std::string tets, hexes;
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+                const int c[8] = {id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
+                                  id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+                if (k == 0) {
+                    for (int a : c) hexes += std::to_string(a) + " ";
+                    continue;
+                }
+                const int xi[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+                for (const auto& t : T) {
+                    int q[4] = {t[0], t[1], t[2], t[3]};
+                    // orientation from the unit cell's corners: det(p1 - p0, p2 - p0, p3 - p0) > 0
+                    const auto d = [&](int r, int x) { return xi[q[r]][x] - xi[q[0]][x]; };
+                    const int det = d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
+                                    d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0));
+                    if (det < 0) std::swap(q[1], q[2]);
+                    for (int a : q) tets += std::to_string(c[a]) + " ";
+                }
+            }
+    return " tetrahedra=\"" + tets + "\" hexahedra=\"" + hexes + "\"";
 }
 
 /// The cantilever scene; `root` goes into the root node (a CudaStep), `body` into the body's node.
 inline std::string scene(const Law& law, const std::string& root, const std::string& body = "",
-                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>") {
+                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>", Mesh mesh = Mesh::Tets) {
     return "<Node name=\"root\" dt=\"2e-5\" gravity=\"0 -9.81 0\" gravityCurve=\"linear 0 1 0.004 0.5\">\n" + root +
            "\n  <Node name=\"body\">\n"
-           "    <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"tetrahedra6\"/>\n"
+           "    <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"" +
+           std::string(mesh == Mesh::Tets ? "tetrahedra6" : "hexahedra") +
+           "\"/>\n"
            "    <MechanicalObject name=\"mo\"/>\n"
            "    <LumpedMass density=\"1000\"/>\n    " +
-           integrator + "\n    " + law.element +
-           "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"/>\n"
+           integrator + "\n    " + law.element + "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"" +
+           (mesh == Mesh::Mixed ? mixedElements() : std::string()) +
+           "/>\n"
            "    <FixedConstraint name=\"clamp\" indices=\"0 1 2 3 4 5 6 7 8\"/>\n"
            "    <FixedConstraint name=\"roller\" indices=\"12 13\" directions=\"1 0 0\"/>\n"
            "    <ConstantForce name=\"pull\" indices=\"27 28 29 30 31 32 33 34 35\" force=\"0.002 0.001 0.004\"/>\n" +
@@ -99,9 +157,9 @@ struct ForceProbe {
     cuda::StepSetup setup;
 };
 
-inline ForceProbe probeForces(const Law& law, double scale) {
+inline ForceProbe probeForces(const Law& law, double scale, Mesh mesh = Mesh::Tets) {
     ForceProbe p;
-    p.sim = core::Simulation::fromString(scene(law, ""));
+    p.sim = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
     p.sim->init();
     auto& mo = p.sim->state("mo");
     deform(mo, scale);
@@ -115,8 +173,8 @@ inline ForceProbe probeForces(const Law& law, double scale) {
 }
 
 /// Positions after `steps` steps of the scene with `root` in its root node.
-inline Positions trajectoryEnd(const Law& law, const std::string& root, int steps) {
-    auto sim = core::Simulation::fromString(scene(law, root));
+inline Positions trajectoryEnd(const Law& law, const std::string& root, int steps, Mesh mesh = Mesh::Tets) {
+    auto sim = core::Simulation::fromString(scene(law, root, "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
     sim->init();
     for (int s = 0; s < steps; ++s) sim->step();
     return sim->state("mo").x();
@@ -131,6 +189,32 @@ inline double displacementError(const Positions& x, const Positions& y, const Po
         den = std::max(den, (y[i] - X[i]).norm());
     }
     return num / den;
+}
+
+/// A prescribed lift of nodes 12 (a roller in x: held there, lifted in y and z) and 30, 31 (pulled),
+/// on y and z (a body element of scene()).
+inline const std::string kLift =
+    "<PrescribedDisplacement name=\"lift\" indices=\"12 30 31\" directions=\"0 1 1\" displacement=\"0 0.001 0.002\" "
+    "shape=\"smooth\" rampTime=\"0.01\"/>";
+
+/// The ends of a trajectory of the scene on the CPU and with `root` (a CudaStep), and their
+/// difference relative to the CPU's largest displacement.
+struct Pair {
+    Positions cpu, device, rest;
+    double err = 0, moved = 0;
+};
+
+inline Pair runBoth(const Law& law, const std::string& body, const std::string& integrator, Mesh mesh, const std::string& root, int steps) {
+    Pair r;
+    for (int k = 0; k < 2; ++k) {
+        auto sim = core::Simulation::fromString(scene(law, k == 0 ? "" : root, body, integrator, mesh));
+        for (int s = 0; s < steps; ++s) sim->step();
+        (k == 0 ? r.cpu : r.device) = sim->state("mo").x();
+        r.rest = sim->state("mo").x0();
+    }
+    r.err = displacementError(r.device, r.cpu, r.rest);
+    for (size_t i = 0; i < r.cpu.size(); ++i) r.moved = std::max(r.moved, (r.cpu[i] - r.rest[i]).norm());
+    return r;
 }
 
 } // namespace cudatest

@@ -25,10 +25,11 @@ void requireDevice() {
 TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "[CudaStep]") {
     requireDevice();
     const Law law = GENERATE(from_range(deviceLaws()));
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Hexes, Mesh::Mixed);
     const double scale = GENERATE(0.3, 1.0, 3.0);
     const bool useFloat = GENERATE(false, true);
-    CAPTURE(law.name, scale, useFloat);
-    ForceProbe p = probeForces(law, scale);
+    CAPTURE(law.name, meshName(mesh), scale, useFloat);
+    ForceProbe p = probeForces(law, scale, mesh);
     auto runner = cuda::makeCudaRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double, 128);
     runner->setState(p.u, p.v);
     runner->elementPass();
@@ -44,20 +45,41 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[Cu
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(law.name, precision);
-    const int steps = 1000;
-    auto ref = core::Simulation::fromString(scene(law, ""));
-    ref->init();
-    for (int s = 0; s < steps; ++s) ref->step();
-    const Positions x = trajectoryEnd(law, "<CudaStep precision=\"" + precision + "\"/>", steps);
-    const auto& mo = ref->state("mo");
-    const double err = displacementError(x, mo.x(), mo.x0());
-    CAPTURE(sci(err));
-    CHECK(err <= (precision == "double" ? 1e-11 : 1e-4));
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+}
+
+TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000 steps", "[CudaStep]") {
+    requireDevice();
+    const Mesh mesh = GENERATE(Mesh::Hexes, Mesh::Mixed);
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(meshName(mesh), law.name, precision);
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+}
+
+TEST_CASE("CudaStep on the GPU follows CentralDifference and PrescribedDisplacement over 1000 steps", "[CudaStep]") {
+    requireDevice();
+    const std::string integrator = GENERATE(as<std::string>{}, "<CentralDifference/>", "<CentralDifference damping=\"5\"/>",
+                                            "<SemiImplicitEuler damping=\"5\"/>");
+    const bool lift = GENERATE(false, true);
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(integrator, lift, meshName(mesh), precision);
+    const Pair r = runBoth(deviceLaw("TransverselyIsotropic"), lift ? kLift : "", integrator, mesh,
+                           "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    // (CentralDifference in double: the CPU's rounding in x, test_cuda_emulation)
+    const bool damped = integrator == "<CentralDifference damping=\"5\"/>", central = integrator.find("Central") != std::string::npos;
+    CHECK(r.err <= (precision == "float" ? 1e-4 : damped ? 5e-9 : central ? 1e-10 : 1e-11));
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory for any block size", "[CudaStep]") {
     requireDevice();
-    const Law law = deviceLaws()[2];
+    const Law law = deviceLaw("TransverselyIsotropic");
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
     const auto run = [&](int block) {
@@ -76,11 +98,17 @@ TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory for any block s
 TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "[CudaStep]") {
     requireDevice();
     const Law law = GENERATE(from_range(deviceLaws()));
-    CAPTURE(law.name);
-    const Positions gpu = trajectoryEnd(law, "<CudaStep/>", 300);
-    const Positions emu = trajectoryEnd(law, "<CudaStep emulate=\"true\"/>", 300);
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
+    CAPTURE(law.name, meshName(mesh), integrator);
+    const auto end = [&](const std::string& root) {
+        auto sim = core::Simulation::fromString(scene(law, root, kLift, integrator, mesh));
+        for (int s = 0; s < 300; ++s) sim->step();
+        return sim->state("mo").x();
+    };
+    const Positions gpu = end("<CudaStep/>");
+    const Positions emu = end("<CudaStep emulate=\"true\"/>");
     auto ref = core::Simulation::fromString(scene(law, ""));
-    ref->init();
     const double err = displacementError(gpu, emu, ref->state("mo").x0());
     CAPTURE(sci(err));
     CHECK(err <= 1e-11);

@@ -4,34 +4,39 @@
 /// element or node), the CPU emulation calls them in loops (EmulatedRunner.h). The element math is
 /// the element layer's and the laws' (Tensor3.h, BatchView.h, materials::evaluateLaw): nothing of
 /// it is written again here (docs/design.md, principle 9).
-///   element kernel: gather u of its 4 nodes -> F from dN/dX (TLED eq. (1)) -> invariants -> the
-///     law's response (evaluateLaw: HEML section 4.4 below J0) -> P (Tensor3.h firstPiola) ->
-///     f_a = -V P dN_a/dX (TLED eq. (3)), written to the element's own 4 slots;
+///   element kernels (tetrahedra, hexahedra): gather u of its 4 or 8 nodes -> F from dN/dX (TLED
+///     eq. (1)) -> invariants -> the law's response (evaluateLaw: HEML section 4.4 below J0) -> P
+///     (Tensor3.h firstPiola) -> f_a = -V P dN_a/dX (TLED eq. (3)), for hexahedra with the
+///     hourglass forces of fascia/elements/Hourglass.h, written to the element's own slots;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
-///     + m g, held axes zeroed, then v += kick (f/m - alpha v), u += dt v (HEML eq. (32)), held
-///     axes at rest (u = v = 0).
+///     + m g, held axes zeroed, then SemiImplicitEuler (v += kick (f/m - alpha v), u += dt v, HEML
+///     eq. (32)) or CentralDifference, the held axes at their constraint's position and velocity
+///     (at rest, or a PrescribedDisplacement's at t + dt).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/elements/BatchView.h"
+#include "fascia/elements/Hourglass.h"
 #include "fascia/materials/Material.h"
 
 namespace fascia::cuda {
 
-/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots).
+namespace detail {
+
+/// u of the NN corners of element e (corner a's node at nodes[a n + e]).
+template <int NN, class T>
+FASCIA_HD FASCIA_INLINE void gatherCorners(const int* nodes, int n, int e, const T* u, elements::NodalBatch<NN, 1, T>& out) {
+    for (int a = 0; a < NN; ++a) {
+        const int node = nodes[a * n + e];
+        for (int i = 0; i < 3; ++i) out.v[a][i][0] = u[3 * node + i];
+    }
+}
+
+/// V P of an element of rest volume V at the deformation gradient F: the invariants, the law's
+/// response (materials::evaluateLaw: HEML section 4.4 below J0) and P (Tensor3.h firstPiola).
 template <class Law, class T>
-FASCIA_HD FASCIA_INLINE void elementForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V) {
     using materials::BaseMaterial;
     constexpr bool i2 = (Law::uses & BaseMaterial::UsesI2) != 0, i4 = (Law::uses & BaseMaterial::UsesI4) != 0,
                    i6 = (Law::uses & BaseMaterial::UsesI6) != 0;
-    const int n = d.nTets;
-    elements::NodalBatch<4, 1, T> u;
-    for (int a = 0; a < 4; ++a) {
-        const int node = d.tet[a * n + e];
-        for (int i = 0; i < 3; ++i) u.v[a][i][0] = d.u[3 * node + i];
-    }
-    T g[9];
-    for (int r = 0; r < 9; ++r) g[r] = d.dN[r * n + e];
-    const elements::NodeRows<1, T> dN{g};
-    const elements::Mat33<T> F = elements::deformationGradientTet(u, dN, 0);
     const elements::Invariants3<T> iv = elements::invariants<i2>(F);
     materials::InvariantsT<T> in;
     in.I1 = iv.I1;
@@ -43,8 +48,21 @@ FASCIA_HD FASCIA_INLINE void elementForces(const StepArrays<T>& d, const Element
     materials::evaluateLaw(p.law, in, static_cast<double>(p.J0), r);
     const elements::Coefficients<T> c{r.dI1, r.dI2, r.dI4, r.dI6, r.dJiso, r.dJvol};
     const elements::Mat33<T> P0 = elements::firstPiola<i2, i4, i6>(F, in.I1, c, p.a0, p.b0);
-    const T V = d.vol[e];
-    const elements::Mat33<T> P{V * P0.xx, V * P0.xy, V * P0.xz, V * P0.yx, V * P0.yy, V * P0.yz, V * P0.zx, V * P0.zy, V * P0.zz};
+    return {V * P0.xx, V * P0.xy, V * P0.xz, V * P0.yx, V * P0.yy, V * P0.yz, V * P0.zx, V * P0.zy, V * P0.zz};
+}
+
+} // namespace detail
+
+/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots).
+template <class Law, class T>
+FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
+    const int n = d.nTets;
+    elements::NodalBatch<4, 1, T> u;
+    detail::gatherCorners(d.tet, n, e, d.u, u);
+    T g[9];
+    for (int r = 0; r < 9; ++r) g[r] = d.dN[r * n + e];
+    const elements::NodeRows<1, T> dN{g};
+    const elements::Mat33<T> P = detail::scaledStress(p, elements::deformationGradientTet(u, dN, 0), d.vol[e]);
     T s0 = 0, s1 = 0, s2 = 0;
     for (int a = 1; a < 4; ++a) {
         const elements::Vec33<T> f = elements::nodalForce(P, dN.at(a - 1, 0, 0), dN.at(a - 1, 1, 0), dN.at(a - 1, 2, 0));
@@ -60,37 +78,109 @@ FASCIA_HD FASCIA_INLINE void elementForces(const StepArrays<T>& d, const Element
     d.ef[2 * n + e] = -s2;
 }
 
+/// The forces of hexahedron e on its 8 corners (uniform strain with hourglass control,
+/// fascia/elements/Hourglass.h), written to hef (its own slots).
+template <class Law, class T>
+FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
+    const int n = d.nHexes;
+    elements::NodalBatch<8, 1, T> u;
+    detail::gatherCorners(d.hex, n, e, d.u, u);
+    // u_a - u_0, as TLED's float gather does (plugins/tled/TLEDKernel.h): F and the hourglass modes see
+    // differences only (the dN_a and each h_q sum to zero), so a rigid translation costs no digits
+    for (int a = 7; a >= 0; --a)
+        for (int i = 0; i < 3; ++i) u.v[a][i][0] -= u.v[0][i][0];
+    T g[24], c[12], h[12];
+    for (int r = 0; r < 24; ++r) g[r] = d.hdN[r * n + e];
+    for (int r = 0; r < 12; ++r) c[r] = d.hgC[r * n + e];
+    const elements::NodeRows<1, T> dN{g}, cq{c};
+    const elements::Mat33<T> F = elements::deformationGradient(u, dN, 0);
+    elements::hourglassModes(u, cq, 0, F, h);
+    const elements::Mat33<T> P = detail::scaledStress(p, F, d.hvol[e]);
+    elements::NodalBatch<8, 1, T> f;
+    elements::hexNodalForces(P, d.hgK[e], elements::NodeRows<1, T>{h}, cq, dN, 0, f);
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) d.hef[(3 * a + i) * n + e] = f.v[a][i][0];
+}
+
 /// The internal force on node `node`: its slots summed in their fixed order.
 template <class T>
 FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, int node) {
     T f0 = 0, f1 = 0, f2 = 0;
-    const int n = d.nTets;
     for (int k = d.slotStart[node]; k < d.slotStart[node + 1]; ++k) {
         const std::uint32_t s = d.slots[k];
-        const int e = static_cast<int>(s >> 2), a = static_cast<int>(s & 3u);
-        f0 += d.ef[(3 * a + 0) * n + e];
-        f1 += d.ef[(3 * a + 1) * n + e];
-        f2 += d.ef[(3 * a + 2) * n + e];
+        const int e = static_cast<int>(s >> 3), a = static_cast<int>(s & 7u);
+        const bool tet = e < d.nTets;
+        const T* ef = tet ? d.ef : d.hef;
+        const int n = tet ? d.nTets : d.nHexes, at = tet ? e : e - d.nTets;
+        f0 += ef[(3 * a + 0) * n + at];
+        f1 += ef[(3 * a + 1) * n + at];
+        f2 += ef[(3 * a + 2) * n + at];
     }
     return {f0, f1, f2};
 }
 
-/// One step of node `node`: forces, constraints, SemiImplicitEuler's update (HEML eq. (32)).
+/// The force on node `node`: its slots, the external force and m g; the held axes' components
+/// removed (the constraints' projectForces).
 template <class T>
-FASCIA_HD FASCIA_INLINE void nodeStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+FASCIA_HD FASCIA_INLINE void nodeForce(const StepArrays<T>& d, const NodeParams<T>& p, int node, T f[3]) {
     const elements::Vec33<T> fi = gatherForce(d, node);
-    const T m = d.mass[node], im = d.invMass[node];
-    const T f[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1],
-                    fi.z + d.ext[3 * node + 2] + m * p.g[2]};
-    const unsigned held = d.fixed[node];
+    const T m = d.mass[node];
+    const T g[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1], fi.z + d.ext[3 * node + 2] + m * p.g[2]};
+    for (int i = 0; i < 3; ++i) f[i] = d.hold[3 * node + i] != 0 ? T(0) : g[i];
+}
+
+/// Axis i of node `node` at the end of the step: a held axis is put at its constraint's position
+/// and velocity (the constraints' projectPositions, projectVelocities); false for a free axis.
+template <class T>
+FASCIA_HD FASCIA_INLINE bool project(const StepArrays<T>& d, int node, int i, T& u, T& v) {
+    const std::uint32_t h = d.hold[3 * node + i];
+    if (h == 0) return false;
+    u = h == 1 ? T(0) : d.tu[h - 2];
+    v = h == 1 ? T(0) : d.tv[h - 2];
+    return true;
+}
+
+/// One SemiImplicitEuler step of node `node` (HEML eq. (32)): v += kick (f/m - alpha v), u += dt v.
+template <class T>
+FASCIA_HD FASCIA_INLINE void eulerStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+    T f[3];
+    nodeForce(d, p, node, f);
+    const T im = d.invMass[node];
     for (int i = 0; i < 3; ++i) {
-        const bool h = (held >> i) & 1u;
-        const T fc = h ? T(0) : f[i];
         T v = d.v[3 * node + i];
-        v += p.kick * (im * fc - p.alpha * v);
+        v += p.kick * (im * f[i] - p.alpha * v);
         T u = d.u[3 * node + i] + p.dt * v;
-        d.v[3 * node + i] = h ? T(0) : v;
-        d.u[3 * node + i] = h ? T(0) : u;
+        project(d, node, i, u, v);
+        d.u[3 * node + i] = u;
+        d.v[3 * node + i] = v;
+    }
+}
+
+/// One CentralDifference step of node `node` (TLED section 2, damped, as plugins/mechanics/
+/// CentralDifference.cpp): u(n+1) = c1 [2 u(n) - c2 u(n-1) + dt^2 f/m] with c2 = 1 - a and
+/// c1 = 1 / (1 + a) = 1 - b (NodeParams), in the increments d(n) = u(n) - u(n-1):
+///   u(n+1) = u(n) + d(n+1),  d(n+1) = y - b y,  y = d(n) - a d(n) + dt^2 f/m
+/// (since c1 (1 + a) = 1), so that in float the increments, not u, carry the scheme (a float u(n-1)
+/// would lose the velocity to its rounding); v = (3 d(n+1) - d(n)) / (2 dt), the second-order
+/// backward difference, once a step was taken, else c1 (d(n+1)/dt + dt/2 f/m), the exact value for
+/// constant acceleration; on a (re)start d(0) = dt v(0) - dt^2/2 (f/m - alpha v(0)).
+template <class T>
+FASCIA_HD FASCIA_INLINE void centralStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
+    T f[3];
+    nodeForce(d, p, node, f);
+    const T im = d.invMass[node], dt = p.dt, dt2 = dt * dt;
+    for (int i = 0; i < 3; ++i) {
+        const T un = d.u[3 * node + i], vn = d.v[3 * node + i];
+        const T dn = p.start ? dt * vn - T(0.5) * dt * dt * (im * f[i] - p.alpha * vn) : d.du[3 * node + i];
+        const T y = dn - p.a * dn + dt2 * im * f[i];
+        const T dnext = y - p.b * y;
+        const T z = dnext / dt + T(0.5) * dt * im * f[i];
+        T v = p.twoSteps ? (3 * dnext - dn) / (2 * dt) : z - p.b * z;
+        T u = un + dnext;
+        // a held axis: the increment to its constraint's position (x(n) of the next step)
+        d.du[3 * node + i] = project(d, node, i, u, v) ? u - un : dnext;
+        d.u[3 * node + i] = u;
+        d.v[3 * node + i] = v;
     }
 }
 

@@ -10,19 +10,31 @@
 
 namespace fascia::cuda {
 
-/// The arrays of one step, scalar T (float or double). Element e, corner a (0..3), component i:
+/// The arrays of one step, scalar T (float or double). Tetrahedron e, corner a (0..3), component i:
 ///   tet[a nTets + e]             node of corner a
 ///   dN[(3 (a-1) + i) nTets + e]  dN_a/dX_i for a = 1..3 (dN_0 = -(dN_1 + dN_2 + dN_3))
 ///   vol[e]                       rest volume
 ///   ef[(3 a + i) nTets + e]      the element's force on its corner a (written by the element
 ///                                kernel, each element to its own slots: no atomics)
+/// Hexahedron e (uniform strain with hourglass control, fascia/elements/Hourglass.h), corner a (0..7):
+///   hex[a nHexes + e]            node of corner a (VTK order)
+///   hdN[(3 a + i) nHexes + e]    volume-averaged dN_a/dX_i
+///   hgC[(3 q + i) nHexes + e]    hourglass vector c_q (q = 0..3)
+///   hvol[e], hgK[e]              rest volume, hourglass stiffness K
+///   hef[(3 a + i) nHexes + e]    the element's force on its corner a
 /// Node n, component i:
-///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 4 e + a, by element
-///                                then corner: the fixed order of the sum (docs/design.md, principle 5)
+///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
+///                                tetrahedra, then the hexahedra (e - nTets), by element then
+///                                corner: the fixed order of the sum (docs/design.md, principle 5)
 ///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
 ///                                formed from displacements, accurate in float; lesson 6)
 ///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
-///   fixed[n]                     held axes, bit i for axis i (FixedConstraint)
+///   hold[3 n + i]                axis i of node n: 0 free, 1 held at rest (FixedConstraint), 2 + j
+///                                following target j (PrescribedDisplacement): its force removed,
+///                                then u = tu[j], v = tv[j] at the end of the step (the last
+///                                constraint that holds the axis decides, as in projectState)
+///   tu[j], tv[j]                 the targets' displacement and velocity at t + dt (set every step)
+///   du[3 n + i]                  CentralDifference: the increment u(n) - u(n-1) of the last step
 template <class T>
 struct StepArrays {
     int nTets = 0, nNodes = 0;
@@ -30,14 +42,24 @@ struct StepArrays {
     const T* dN = nullptr;
     const T* vol = nullptr;
     T* ef = nullptr;
+    int nHexes = 0;
+    const int* hex = nullptr;
+    const T* hdN = nullptr;
+    const T* hgC = nullptr;
+    const T* hvol = nullptr;
+    const T* hgK = nullptr;
+    T* hef = nullptr;
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
     const T* mass = nullptr;
     const T* invMass = nullptr;
-    const std::uint8_t* fixed = nullptr;
+    const std::uint32_t* hold = nullptr;
+    const T* tu = nullptr;
+    const T* tv = nullptr;
     T* u = nullptr;
     T* v = nullptr;
+    T* du = nullptr;
 };
 
 /// What the element kernel needs besides the arrays: the law (by value, its parameters as the
@@ -49,13 +71,18 @@ struct ElementParams {
     elements::Vec33<T> a0, b0;
 };
 
-/// The node kernel's step: g(t) (gravity, scaled by its curve), dt, the velocity kick of this step
-/// (dt, or dt/2 on the first step of the leapfrog start) and the damping alpha
-/// (SemiImplicitEuler, HEML eq. (32)).
+/// The node kernel's step: g(t) (gravity, scaled by its curve), dt and the damping alpha; for
+/// SemiImplicitEuler (HEML eq. (32)) the velocity kick of this step (dt, or dt/2 on the first step of
+/// the leapfrog start); for CentralDifference (TLED section 2) a = alpha dt/2 and b = a / (1 + a)
+/// (its c2 = 1 - a and c1 = 1 / (1 + a) = 1 - b, which in float would hold a to 1e-3 only: b and a
+/// keep it to 1e-7), whether this step (re)starts the scheme (x(-1) from x(0), v(0), a(0)) and
+/// whether a step with this dt came before (the backward-difference velocity).
 template <class T>
 struct NodeParams {
     T g[3];
     T dt, kick, alpha;
+    T a = 0, b = 0;
+    bool start = false, twoSteps = false;
 };
 
 } // namespace fascia::cuda

@@ -28,6 +28,12 @@ void hexUniformStrain(const Vec3 (&p)[8], double& V, double dN[24], double& sumD
 extern const double kHexXi[8][3];
 /// Hourglass base vectors xi eta, eta zeta, zeta xi, xi eta zeta at the nodes (Flanagan-Belytschko).
 extern const double kHourglass[4][8];
+/// The hourglass vectors c_q = sum_a h_qa X_a of a hexahedron at rest (h_q = kHourglass[q]), c[3 q + i]
+/// (fascia/elements/Hourglass.h).
+void hexHourglassVectors(const Vec3 (&p)[8], double c[12]);
+/// The hourglass stiffness K = kappa (bulk + 4/3 shear modulus of m) |V| sum_a |dN_a/dX|^2 / 8 of a
+/// hexahedron of volume V (hexUniformStrain's sumDN2), kappa the force field's hourglassStiffness.
+double hexHourglassStiffness(double kappa, const materials::BaseMaterial& m, double absV, double sumDN2);
 
 /// Rest data of linear tetrahedra (x = x0 + sum_k (X_k - X_0) ... through Dm^-1): the inverse rest
 /// edge matrices Dm^-1 (columns X1 - X0, X2 - X0, X3 - X0), volumes and shortest altitudes.
