@@ -232,30 +232,30 @@ void addBlocks(Impl& im, int kind, size_t gi, size_t begin, size_t end) {
     }
 }
 
+/// The node entries of block b's elements (NN per element, in the connectivity of its kind).
+elements::CompactBlockBuffers::Nodes blockNodes(Impl& im, const Block& b) {
+    const size_t nn = b.kind == 0 ? 4 : 8;
+    std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
+    return {nodes.data() + b.begin * nn, (b.end - b.begin) * nn};
+}
+
 /// The range of internal nodes each block's elements use (the range layout of the buffers).
 void addNodeRanges(Impl& im) {
     for (const Block& b : im.blocks) {
-        const size_t nn = b.kind == 0 ? 4 : 8;
-        const std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
-        int lo = std::numeric_limits<int>::max(), hi = -1;
-        for (size_t i = b.begin * nn; i < b.end * nn; ++i) {
-            lo = std::min(lo, nodes[i]);
-            hi = std::max(hi, nodes[i]);
-        }
-        im.buffers.addBlock(lo, hi);
+        const auto nd = blockNodes(im, b);
+        const auto [lo, hi] = std::minmax_element(nd.nodes, nd.nodes + nd.count);
+        im.buffers.addBlock(*lo, *hi);
     }
 }
 
 /// Rows of the compact layout: the distinct nodes of each block, all blocks together.
-size_t compactRows(const Impl& im) {
+size_t compactRows(Impl& im) {
     std::vector<size_t> seenIn(im.nodeCount, ~size_t(0));  // the last block that used the node
     size_t rows = 0;
     for (size_t bi = 0; bi < im.blocks.size(); ++bi) {
-        const Block& b = im.blocks[bi];
-        const size_t nn = b.kind == 0 ? 4 : 8;
-        const std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
-        for (size_t i = b.begin * nn; i < b.end * nn; ++i) {
-            size_t& s = seenIn[static_cast<size_t>(nodes[i])];
+        const auto nd = blockNodes(im, im.blocks[bi]);
+        for (size_t i = 0; i < nd.count; ++i) {
+            size_t& s = seenIn[static_cast<size_t>(nd.nodes[i])];
             if (s != bi) ++rows, s = bi;
         }
     }
@@ -280,11 +280,7 @@ void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice
         return;
     }
     im.buffers = elements::BlockBuffers{};
-    for (const Block& b : im.blocks) {
-        const size_t nn = b.kind == 0 ? 4 : 8;
-        std::vector<int>& nodes = b.kind == 0 ? im.tet.nodes : im.hex.nodes;
-        im.rows.addBlock({{nodes.data() + b.begin * nn, (b.end - b.begin) * nn}});  // rewritten to the block's rows
-    }
+    for (const Block& b : im.blocks) im.rows.addBlock({blockNodes(im, b)});  // rewritten to the block's rows
     std::vector<int> nodeOf = im.nodeOf;
     if (nodeOf.empty()) {
         nodeOf.resize(im.nodeCount);
@@ -349,9 +345,8 @@ void TLEDForceField::precompute(const MeshData* mesh, const Positions& X) {
             count[kind] += su.perGroup[gi].size();
         }
     }
-    const bool fibres = im.fibresPerElement;
-    im.tet.allocate(im.hex.batchOffset, fibres, im.mixed);
-    im.hex.allocate(im.batches - im.hex.batchOffset, fibres, im.mixed);
+    im.tet.allocate(im.hex.batchOffset, im.fibresPerElement, im.mixed);
+    im.hex.allocate(im.batches - im.hex.batchOffset, im.fibresPerElement, im.mixed);
     // the element arrays at their exact sizes (push_back alone would leave up to twice their size allocated)
     const auto reserveSet = [&](auto& s, size_t n, size_t nn) {
         s.nodes.reserve(nn * n);
