@@ -32,3 +32,11 @@ execute_process(COMMAND ${FASCIA_BENCH} --precision single RESULT_VARIABLE rc OU
 if(rc EQUAL 0 OR NOT err MATCHES "--precision is double or mixed")
   message(FATAL_ERROR "fascia-bench --precision single: exit ${rc}, ${err}")
 endif()
+# --node-buffers reaches TLED's scene (both layouts run, the same bits on 1 and 2 threads), and an
+# unknown layout is refused
+bench_matches("\"forcefield\": \"TLED\", .*\"node_buffers\": \"compact\", .*\"bitwise_identical_1_vs_2_threads\": true}"
+  --forcefield TLED --material NeoHookean --cube 6 --steps 3 --repeat 1 --node-buffers compact --determinism)
+execute_process(COMMAND ${FASCIA_BENCH} --node-buffers wide RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(rc EQUAL 0 OR NOT err MATCHES "--node-buffers is auto, range or compact")
+  message(FATAL_ERROR "fascia-bench --node-buffers wide: exit ${rc}, ${err}")
+endif()
