@@ -4,13 +4,18 @@
 #   1. unpacks the dependency bundle made by tools/make-gpu-deps.sh (Eigen, TinyXML2, Catch2);
 #   2. configures a build without VTK (FASCIA_WITH_VTK=OFF, FASCIA_WITH_CUDA=ON) that takes those
 #      three from the bundle only (their *_DIR given explicitly);
-#   3. builds only what the GPU tests need, on all cores;
-#   4. runs the GPU tests (test_cuda_device) and the CPU emulation test (test_cuda_emulation);
-#   5. writes SUMMARY.txt and the logs into OUT_DIR.
+#   3. builds only what the GPU tests and fascia-bench need, on all cores;
+#   4. runs the GPU tests (test_cuda_device) and the CPU emulation test (test_cuda_emulation)
+#      through ctest, one case a process, on all cores (ctest.log; the per-case output of any
+#      failure in failures.log);
+#   5. runs `fascia-bench --suite gpu` (bench.json: one JSON object a case; bench.log its errors),
+#      unless FASCIA_GPU_BENCH=0, for at most FASCIA_GPU_BENCH_SECONDS (default 200);
+#   6. writes SUMMARY.txt into OUT_DIR.
 # Usage: tools/gpu-check.sh OUT_DIR [BUNDLE]   (BUNDLE: tools/gpu-deps.tar.gz or an unpacked folder;
 # default tools/gpu-deps.tar.gz, else tools/gpu-deps). Exit 0 when every test ran and passed; 77
-# when the GPU tests were skipped (no usable device); 1 otherwise. Planned to finish well within 6
-# minutes on 16 cores (the build is about 60 translation units and one .cu file).
+# when the GPU tests were skipped (no usable device); 1 otherwise. Planned to finish within 6
+# minutes on 16 cores (the build is about 60 translation units and one .cu file; FASCIA_GPU_CUBES
+# gives the bench's sizes, default 70,100,150: 2M to 20M tetrahedra).
 set -uo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: tools/gpu-check.sh OUT_DIR [BUNDLE]}
@@ -42,17 +47,33 @@ cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFASCIA_WITH_VT
       -DEigen3_DIR="$deps/share/eigen3/cmake" -Dtinyxml2_DIR="$deps/lib/cmake/tinyxml2" -DCatch2_DIR="$deps/lib/cmake/Catch2" \
       > "$out/configure.log" 2>&1 || { say "configure failed (configure.log)"; tail -20 "$out/configure.log" >> "$summary"; exit 1; }
 say "found: $(grep -E '^(Eigen3|tinyxml2|Catch2)_DIR' "$build/CMakeCache.txt" | tr '\n' ' ')"
-targets="test_cuda_device test_cuda_emulation fascia_cuda fascia_tled fascia_mechanics fascia_meshio fascia_viscoelastic fascia_materials fascia_elements"
+targets="test_cuda_device test_cuda_emulation fascia-bench fascia_cuda fascia_tled fascia_mechanics fascia_meshio fascia_viscoelastic fascia_materials fascia_elements"
 cmake --build "$build" -j"$nproc" --target $targets > "$out/build.log" 2>&1 || { say "build failed (build.log)"; grep -E "error" "$out/build.log" | head -20 >> "$summary"; exit 1; }
 say "built in $(( $(date +%s) - t0 )) s"
 
 export LD_LIBRARY_PATH="$deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 rc=0
-for t in test_cuda_emulation test_cuda_device; do
-    "$build/bin/tests/$t" -r compact > "$out/$t.log" 2>&1
-    r=$?
-    say "$t: exit $r, $(grep -E 'Passed|Failed|passed|failed' "$out/$t.log" | tail -1)"
-    if [ "$t" = test_cuda_device ] && [ $r -eq 77 ]; then rc=77; elif [ $r -ne 0 ]; then rc=1; fi
-done
+(cd "$build" && ctest -R '^(test_cuda_emulation|test_cuda_device):' -j"$nproc" --timeout 300 > "$out/ctest.log" 2>&1)
+r=$?
+say "ctest (cuda tests, -j$nproc): exit $r, $(grep -E 'tests passed|tests failed' "$out/ctest.log" | tail -1)"
+skipped=$(grep -c 'Skipped' "$out/ctest.log")
+say "  skipped cases: $skipped; device cases run: $(grep -E 'test_cuda_device:' "$out/ctest.log" | grep -vc 'Skipped')"
+grep -E '\*\*\*Failed|Not Run|Timeout' "$out/ctest.log" | head -20 | tee -a "$summary"
+if [ $r -ne 0 ]; then
+    rc=1
+    (cd "$build" && ctest -R '^(test_cuda_emulation|test_cuda_device):' --rerun-failed --output-on-failure > "$out/failures.log" 2>&1)
+elif grep -q 'test_cuda_device:.*Skipped' "$out/ctest.log"; then
+    rc=77
+fi
+say "tests done at $(( $(date +%s) - t0 )) s"
+if [ "${FASCIA_GPU_BENCH:-1}" != 0 ]; then
+    (cd "$src" && timeout "${FASCIA_GPU_BENCH_SECONDS:-200}" "$build/bin/fascia-bench" --suite gpu --cubes "${FASCIA_GPU_CUBES:-70,100,150}" \
+        > "$out/bench.json" 2> "$out/bench.log")
+    b=$?
+    say "fascia-bench --suite gpu: exit $b ($(wc -l < "$out/bench.json") cases)"
+    # one line a case: device, precision, material, elements, ns per element-step, rates
+    sed -E 's/.*"material": "([^"]*)".*"elements": ([0-9]+).*"precision": "([^"]*)"(, "device": "cuda")?.*"ns_per_element_step": ([0-9.]+), "steps_per_s": ([0-9]+), "element_steps_per_s": ([0-9.e+]+).*/  \3 \1 \2 el: \5 ns\/el-step, \6 steps\/s, \7 el-steps\/s\4/' \
+        "$out/bench.json" | tee -a "$summary"
+fi
 say "total $(( $(date +%s) - t0 )) s, exit $rc"
 exit $rc

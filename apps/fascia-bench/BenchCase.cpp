@@ -64,7 +64,9 @@ std::string findMesh(const std::string& name) {
 
 std::string sceneXml(const Case& c) {
     std::ostringstream s;
-    s << "<Node name=\"root\" dt=\"1e-5\">\n  <Node name=\"body\">\n";
+    s << "<Node name=\"root\" dt=\"1e-5\">\n";
+    if (c.device == "cuda") s << "  <CudaStep precision=\"" << c.precision << "\"/>\n";
+    s << "  <Node name=\"body\">\n";
     if (!c.mesh.empty())
         s << "    <MeshLoader name=\"loader\" filename=\"" << fs::absolute(c.mesh).string() << "\"/>\n";
     else
@@ -74,7 +76,7 @@ std::string sceneXml(const Case& c) {
       << "    <LumpedMass density=\"1000\"/>\n"
       << "    " << materialXml(c.material) << "\n"
       << "    <" << c.forcefield << "ForceField name=\"ff\""
-      << (c.precision == "double" ? "" : " precision=\"" + c.precision + "\"")
+      << (c.precision == "double" || !c.device.empty() ? "" : " precision=\"" + c.precision + "\"")
       << (c.nodeBuffers.empty() || c.forcefield != "TLED" ? "" : " nodeBuffers=\"" + c.nodeBuffers + "\"") << "/>\n";
     if (c.viscous) s << "    <ViscoelasticProny alpha=\"0.5\" tau=\"0.58\"/>\n";
     s << "    <SemiImplicitEuler/>\n"
@@ -90,6 +92,8 @@ std::unique_ptr<Simulation> build(const Case& c, int threads) {
     // the time step must stay stable for the timed steps: use a fraction of the critical one
     const double crit = sim->criticalTimeStep();
     if (std::isfinite(crit)) sim->setDt(0.5 * crit);
+    // (on a device, no snapshot of the state every 100 steps: each one brings the state back)
+    if (!c.device.empty()) sim->setSnapshotEvery(0);
     deform(sim->state("state"));
     if (c.settle > 0) sim->run(c.settle);
     return sim;

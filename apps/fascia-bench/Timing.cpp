@@ -34,6 +34,7 @@ constexpr double kShortestTimedMs = 0.01;
 struct Timed {
     std::function<void()> step;
     std::function<void()> forces;  ///< empty: not timed alone
+    std::function<void()> finish;  ///< after each timed sample: waits for the steps a device queued (empty: none)
     size_t elements = 0, nodes = 0;
     LayoutBytes bytes;
     int group = 1;                 ///< steps per timed sample
@@ -90,6 +91,7 @@ Timed prepare(const Case& c, Owned& o) {
     } else {
         o.sim = build(c, c.threads);
         Simulation* s = o.sim.get();
+        BaseStepBackend* device = s->groups().at(0).backend;
         auto* ff = dynamic_cast<BaseForceField*>(s->find("ff"));
         auto& st = s->state("state");
         o.f.assign(st.size(), Vec3::Zero());
@@ -97,18 +99,22 @@ Timed prepare(const Case& c, Owned& o) {
         // (at the simulation's time: TLED's viscous history then recomputes the same step each
         // call; HEML's would recompute the open step's states at the current positions and so
         // change the trajectory: not timed alone with viscosity)
-        if (ff && !(c.viscous && c.forcefield == "HEML")) t.forces = [ff, s, &st, &o] { ff->addForce(st, o.f, s->time()); };
+        if (ff && !device && !(c.viscous && c.forcefield == "HEML")) t.forces = [ff, s, &st, &o] { ff->addForce(st, o.f, s->time()); };
         t.elements = ff ? ff->elementCount() : 0;
         t.nodes = st.size();
-        if (auto* lr = dynamic_cast<const LayoutReport*>(ff)) t.bytes = lr->layoutBytes();
+        if (auto* lr = dynamic_cast<const LayoutReport*>(device ? static_cast<Component*>(device) : ff)) t.bytes = lr->layoutBytes();
+        if (device) t.finish = [device] { device->wait(); };
         s->run(0);  // initialised and started
     }
     // warm-up, which also chooses the group of steps a sample times
     omp_set_num_threads(c.threads);
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < 5; ++k) t.step();
+    if (t.finish) t.finish();
     const double per = since(t0) / 5;
     t.group = per >= kShortestTimedMs ? 1 : int(std::ceil(kShortestTimedMs / std::max(per, 1e-6)));
+    // a device runs the steps the host queued: one sample is the whole window, with one wait at its end
+    if (t.finish) t.group = c.steps;
     return t;
 }
 
@@ -128,6 +134,7 @@ std::vector<Times> timeRounds(const std::vector<Case>& cs, std::vector<Timed>& t
                 const int m = std::min(t.group, cs[i].steps - done);
                 const auto t0 = std::chrono::steady_clock::now();
                 for (int k = 0; k < m; ++k) t.step();
+                if (t.finish) t.finish();
                 out[i].steps.push_back(since(t0) / m);
                 done += m;
             }
@@ -184,11 +191,12 @@ void printCase(const std::vector<Case>& cs, const std::vector<Timed>& ts, const 
                     ", \"threads\": " + std::to_string(c.threads) + ", \"precision\": \"" +
                     (c.reference ? std::string("double") : c.precision) + "\"" +
                     (c.nodeBuffers.empty() || c.reference || c.forcefield != "TLED" ? "" : ", \"node_buffers\": \"" + c.nodeBuffers + "\"") +
-                    ", \"steps\": " + std::to_string(c.steps);
+                    (c.device.empty() ? "" : ", \"device\": \"" + c.device + "\"") + ", \"steps\": " + std::to_string(c.steps);
     s += fmt(", \"ms_per_step\": %.5f", med) + fmt(", \"ms_min\": %.5f", *fastest) + fmt(", \"ms_max\": %.5f", *slowest);
     s += fmt(", \"median_step_ms\": %.5f", st.median) + fmt(", \"p90_step_ms\": %.5f", st.p90) + fmt(", \"p99_step_ms\": %.5f", st.p99);
     if (t.group > 1) s += ", \"step_group\": " + std::to_string(t.group);
-    s += fmt(", \"ns_per_element_step\": %.3f", t.elements ? med * 1e6 / E : 0.0);
+    s += fmt(", \"ns_per_element_step\": %.4f", t.elements ? med * 1e6 / E : 0.0);
+    s += fmt(", \"steps_per_s\": %.0f", 1e3 / med) + fmt(", \"element_steps_per_s\": %.4g", t.elements ? E * 1e3 / med : 0.0);
     const double perElement = double(ts[0].elements) / E;
     if (i > 0) {
         // per element: the step-time ratio scaled by the element counts
@@ -228,8 +236,11 @@ void runCases(const std::vector<Case>& cs) {
     std::vector<Timed> ts;
     for (size_t i = 0; i < cs.size(); ++i) ts.push_back(prepare(cs[i], owned[i]));
     Contender contender(cs[0].contend);
-    for (size_t i = 0; i < cs.size(); ++i)  // warm again, now beside the competitor
-        for (int k = 0; k < 2 * ts[i].group; ++k) ts[i].step();
+    for (size_t i = 0; i < cs.size(); ++i) {  // warm again, now beside the competitor
+        const int warm = ts[i].finish ? 100 : 2 * ts[i].group;  // (a device's group is its whole window)
+        for (int k = 0; k < warm; ++k) ts[i].step();
+        if (ts[i].finish) ts[i].finish();
+    }
     const std::vector<Times> tm = timeRounds(cs, ts);
     std::vector<int> bitwise(cs.size(), -1);  // -1: not asked
     for (size_t i = 0; i < cs.size(); ++i)

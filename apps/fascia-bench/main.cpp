@@ -24,7 +24,7 @@ usage:
   fascia-bench [--forcefield HEML|TLED] [--material NAME] [--mesh FILE | --cube N]
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
                [--viscous] [--precision double|mixed] [--node-buffers auto|range|compact]
-               [--determinism] [--reference] [--contend]
+               [--determinism] [--reference] [--contend] [--device cpu|cuda]
   fascia-bench --suite [NAME] [--steps N] [--repeat R] [--reference] [--contend] [--cubes LIST]
   fascia-bench --overhead N [--steps N] [--repeat R]
   fascia-bench --load SCENE.xml [--repeat R]
@@ -43,6 +43,12 @@ usage:
                   in float, nodes and sums in double)
   --node-buffers L  TLED's block force buffers: auto (default), range (each block's node range)
                   or compact (one row per node of the block); with --suite, every TLED case
+  --device D      cpu (default) or cuda: the whole step on a CUDA GPU (a CudaStep in the root
+                  node; TLED only; --precision is then double or float). The host queues the
+                  steps; each timed window ends with one wait for the device, and no state comes
+                  back (no snapshot: Simulation::setSnapshotEvery(0)). Steps are timed by whole
+                  windows (median_step_ms is a window's mean); bytes_per_element_step counts the
+                  device step's arrays (CudaStep::layoutBytes)
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
@@ -51,7 +57,7 @@ usage:
                   this process may use, pinned where allowed), as a render or haptic thread would;
                   it is killed after the timing and the --determinism runs (and with the bench,
                   on any exit or signal)
-  --suite [heml|tled|scaling|large|buffers|contact]
+  --suite [heml|tled|scaling|large|buffers|contact|gpu]
                   the standard sets of docs/performance.md: heml (default: HEML compressible
                   neo-Hookean and Saint Venant-Kirchhoff on the 4.4k and 21k organ meshes and a
                   2M-tetrahedron cube, 1 and 2 threads), tled (TLED neo-Hookean, transversely
@@ -66,7 +72,11 @@ usage:
                   it and moving every step, and with the same capsule as a 10k-triangle
                   SurfaceTool), buffers (TLED's two layouts of the block
                   buffers, range and compact, in double and mixed on 2 threads, on the large
-                  suite's cubes)
+                  suite's cubes), gpu (issue 15's figures on a CUDA GPU: TLED neo-Hookean
+                  tetrahedra in float and double from 2M to 20M elements (--cubes, default
+                  70,100,150); at 2M, neo-Hookean first, then transversely isotropic, one Prony
+                  term and hexahedra, per precision; the 21k organ mesh on the CPU (TLED, 2
+                  threads) first, then on the GPU in float and double)
   --cubes LIST    the large suite's sizes as cube cells per side, e.g. 15,32 (default 15,32,50,70)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
@@ -291,6 +301,58 @@ void suiteHeml(const Case& c, const SuiteOptions& o) {
             }
 }
 
+/// Issue 15's figures on a CUDA GPU (docs/performance.md): the throughput of TLED from 2M to 20M
+/// tetrahedra, the costs of fibres, viscosity and hexahedra as ratios at 2M, and the organ mesh
+/// against the 2-thread CPU step of the same build.
+void suiteGpu(const Case& c, const SuiteOptions& o) {
+    Case base = sideBySide(c, "TLED");
+    base.device = "cuda";
+    base.mesh.clear();
+    base.element = "tetrahedra6";
+    base.repeat = std::min(c.repeat, 5);
+    for (const char* precision : {"float", "double"}) {
+        std::vector<Case> line;  // (70: 2.06M tetrahedra)
+        for (auto [mat, visc] : {std::pair{"NeoHookean", false}, std::pair{"TransverselyIsotropic", false}, std::pair{"NeoHookean", true}}) {
+            Case s = base;
+            s.precision = precision;
+            s.material = mat;
+            s.viscous = visc;
+            s.cube = 70;
+            s.steps = 500;
+            line.push_back(s);
+        }
+        Case h = line[0];  // hexahedra: 126^3 = 2.0M
+        h.element = "hexahedra";
+        h.cube = 126;
+        line.push_back(h);
+        runCases(line);
+    }
+    const std::vector<int> sizes = o.cubes.empty() ? std::vector<int>{70, 100, 150} : o.cubes;  // 2.06M, 6M, 20.25M
+    for (const char* precision : {"float", "double"})
+        for (int cube : sizes) {
+            Case s = base;
+            s.precision = precision;
+            s.cube = cube;
+            s.steps = cube <= 70 ? 500 : 200;
+            runCases({s});
+        }
+    std::vector<Case> organ;
+    Case cpu = sideBySide(c, "TLED");
+    cpu.mesh = findMesh("organ_21436.msh");
+    cpu.cube = 0;
+    cpu.threads = 2;
+    cpu.steps = 2000;
+    organ.push_back(cpu);
+    for (const char* precision : {"float", "double"}) {
+        Case s = cpu;
+        s.device = "cuda";
+        s.precision = precision;
+        s.steps = 20000;
+        organ.push_back(s);
+    }
+    runCases(organ);
+}
+
 /// The suite called name; 1 (with a message) when there is none.
 int runSuite(const std::string& name, const Case& c, const SuiteOptions& o) {
     if (name == "tled") suiteTled(c, o);
@@ -299,8 +361,9 @@ int runSuite(const std::string& name, const Case& c, const SuiteOptions& o) {
     else if (name == "heml") suiteHeml(c, o);
     else if (name == "buffers") suiteBuffers(c, o);
     else if (name == "contact") runContactSuite(c);
+    else if (name == "gpu") suiteGpu(c, o);
     else {
-        std::cerr << "fascia-bench: unknown suite '" << name << "' (heml, tled, scaling, large, buffers or contact)\n";
+        std::cerr << "fascia-bench: unknown suite '" << name << "' (heml, tled, scaling, large, buffers, contact or gpu)\n";
         return 1;
     }
     return 0;
@@ -353,6 +416,7 @@ int main(int argc, char** argv) {
         else if (a == "--node-buffers") c.nodeBuffers = str("--node-buffers");
         else if (a == "--determinism") c.determinism = true;
         else if (a == "--contend") c.contend = true;
+        else if (a == "--device") c.device = str("--device");
         else if (a == "--scene") printScene = true;
         else if (a == "--reference") options.reference = true;
         else if (a == "--cubes") options.cubes = parseList(next(), "--cubes");
@@ -371,8 +435,17 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --forcefield is HEML or TLED\n";
         return 1;
     }
-    if (c.precision != "double" && c.precision != "mixed") {
-        std::cerr << "fascia-bench: --precision is double or mixed\n";
+    if (c.device == "cpu") c.device.clear();
+    if (!c.device.empty() && c.device != "cuda") {
+        std::cerr << "fascia-bench: --device is cpu or cuda\n";
+        return 1;
+    }
+    if (c.device.empty() ? c.precision != "double" && c.precision != "mixed" : c.precision != "double" && c.precision != "float") {
+        std::cerr << "fascia-bench: --precision is double or mixed" << (c.device.empty() ? "" : " on the CPU, double or float on --device cuda") << "\n";
+        return 1;
+    }
+    if (!c.device.empty() && (c.forcefield != "TLED" || c.reference || c.contend)) {
+        std::cerr << "fascia-bench: --device cuda runs TLED (--forcefield TLED), without --reference or --contend\n";
         return 1;
     }
     if (!c.nodeBuffers.empty() && c.nodeBuffers != "auto" && c.nodeBuffers != "range" && c.nodeBuffers != "compact") {

@@ -259,10 +259,17 @@ void Simulation::start() {
     if (m_started) return;
     createOutputDir();
     m_started = true;
+    fetchState();
     for (auto* o : m_observers) {
         ScopedTimer t(o->timer());
         o->observe(m_time, m_step);
     }
+}
+
+void Simulation::fetchState() const {
+    // (a copy from the device into the host state: what the simulation is does not change)
+    for (auto& g : const_cast<std::vector<MechanicalGroup>&>(m_groups))
+        if (g.backend) g.backend->fetch(g);
 }
 
 double Simulation::criticalTimeStep() const { return limitingForceField().first; }
@@ -371,31 +378,41 @@ void Simulation::advance(double end) {
     requireDt();
     start();
     SceneContext& ctx = m_root->context();
-    // the divergence check's snapshot (the last good state is rebuilt from it: saveLastGoodState)
-    if (!m_replaying && m_snapshotEvery > 0 && (m_snapshotStep < 0 || m_step - m_snapshotStep >= m_snapshotEvery))
-        takeSnapshot();
+    // observers that record the end of this step read the state: a device brings it back (and
+    // checks it) within the step
+    const bool recorded = !m_replaying && std::any_of(m_observers.begin(), m_observers.end(),
+                                                      [&](const BaseObserver* o) { return o->records(m_step + 1); });
     try {
+        // the divergence check's snapshot (the last good state is rebuilt from it: saveLastGoodState)
+        if (!m_replaying && m_snapshotEvery > 0 && (m_snapshotStep < 0 || m_step - m_snapshotStep >= m_snapshotEvery))
+            takeSnapshot();
         for (Component* c : m_all) c->beginStep(m_time, m_dt);
         for (auto& g : m_groups) {
             g.stepIndex = m_step + 1;
             if (g.backend) {
                 ScopedTimer t(g.backend->timer());
                 g.backend->step(g, m_time, m_dt);
+                if (recorded) g.backend->fetch(g);
             } else {
                 ScopedTimer t(g.integrator->timer());
                 g.integrator->step(g, m_time, m_dt);
             }
-            checkGroup(g);
+            // (a backend checks the state it runs itself, on its device: BaseStepBackend)
+            if (!g.backend) checkGroup(g);
         }
     } catch (const Error& e) {
         m_failed = true;  // finish() then records no final state
         if (!m_replaying && e.kind() == ErrorKind::Simulation) {
-            // the last good state: before the run of growing steps that led here (checkStep's rule)
+            // the last good state: before the run of growing steps that led here (checkStep's rule),
+            // or before the first bad step a device found late (MechanicalGroup::firstBadStep)
             int back = 0;
-            for (const auto& g : m_groups)
+            long bad = m_step + 1;
+            for (const auto& g : m_groups) {
                 back = std::max(back, std::min(g.kineticGrowth, MechanicalGroup::kGrowthSteps - 1));
-            m_failedStep = m_step + 1;
-            m_lastGoodStep = std::max(0L, m_step - long(back));
+                if (g.firstBadStep > 0) bad = std::min(bad, g.firstBadStep);
+            }
+            m_failedStep = bad;
+            m_lastGoodStep = std::max(0L, std::min(m_step - long(back), bad - 1));
         }
         throw;
     } catch (...) {
@@ -473,22 +490,32 @@ void Simulation::finish() {
     if (m_finished || !m_initialised) return;
     m_finished = true;
     // the final state, whatever the observers' `every` (not after a failed step: its state is not one)
-    if (m_started && !m_failed)
+    if (m_started && !m_failed) {
+        try {
+            fetchState();  // (a device's state found not finite here is a failed run: no final state)
+        } catch (...) {
+            m_failed = true;
+            for (Component* c : m_all) c->cleanup();
+            throw;
+        }
         for (auto* o : m_observers) {
             ScopedTimer t(o->timer());
             o->observeFinal(m_time, m_step);
         }
+    }
     for (Component* c : m_all) c->cleanup();
 }
 
 BaseMechanicalState& Simulation::state(const std::string& nameOrPath) {
     auto* s = dynamic_cast<BaseMechanicalState*>(find(nameOrPath));
     if (!s) throwInputError({}, "no mechanical state '" + nameOrPath + "' in the scene");
+    fetchState();
     return *s;
 }
 
 SurfaceView Simulation::surface(const std::string& nameOrPath) {
     Component* c = find(nameOrPath);
+    fetchState();
     if (auto* v = dynamic_cast<BaseVisualSurface*>(c)) return {&v->points(), &v->triangles(), v->body()};
     auto* s = dynamic_cast<BaseMechanicalState*>(c);
     if (!s) throwInputError({}, "no mechanical state or visual surface '" + nameOrPath + "' in the scene");

@@ -122,6 +122,7 @@ std::uint64_t Simulation::sceneHash() const {
 }
 
 void Simulation::writeState(StateWriter& w, bool observers) const {
+    fetchState();
     w.beginSection("/", "Simulation");
     w.put("time", m_time);
     w.put("step", m_step);
@@ -175,6 +176,10 @@ void Simulation::readState(StateReader& r, bool observers) {
         r.endSection();
     }
     if (!r.atEnd()) r.fail("the checkpoint has more sections than this scene has components");
+    for (auto& g : m_groups) {
+        g.firstBadStep = -1;
+        if (g.backend) g.backend->push(g);
+    }
 }
 
 void Simulation::save(const std::string& path) const {

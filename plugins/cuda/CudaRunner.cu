@@ -55,7 +55,8 @@ __global__ void gatherKernel(StepArrays<T> d, T* f) {
     }
 }
 
-/// One device array, freed with its owner.
+/// One device array, freed with its owner. Copies go through the runner's stream (in order with
+/// its launches) and wait for their end.
 template <class T>
 class DeviceArray {
 public:
@@ -65,18 +66,43 @@ public:
     ~DeviceArray() {
         if (m_p) cudaFree(m_p);
     }
-    void upload(const std::vector<T>& h) {
-        if (h.size() != m_n) {
-            if (m_p) check(cudaFree(m_p), "cudaFree");
-            m_p = nullptr;
-            m_n = h.size();
-            if (m_n) check(cudaMalloc(reinterpret_cast<void**>(&m_p), m_n * sizeof(T)), "cudaMalloc");
-        }
-        if (m_n) check(cudaMemcpy(m_p, h.data(), m_n * sizeof(T), cudaMemcpyHostToDevice), "cudaMemcpy to the device");
+    void allocate(size_t n) {
+        if (n == m_n) return;
+        if (m_p) check(cudaFree(m_p), "cudaFree");
+        m_p = nullptr;
+        m_n = n;
+        if (m_n) check(cudaMalloc(reinterpret_cast<void**>(&m_p), m_n * sizeof(T)), "cudaMalloc");
     }
-    void download(std::vector<T>& h) const {
-        h.resize(m_n);
-        if (m_n) check(cudaMemcpy(h.data(), m_p, m_n * sizeof(T), cudaMemcpyDeviceToHost), "cudaMemcpy to the host");
+    void upload(const T* h, size_t n, cudaStream_t s) {
+        allocate(n);
+        if (m_n) check(cudaMemcpyAsync(m_p, h, m_n * sizeof(T), cudaMemcpyHostToDevice, s), "cudaMemcpyAsync to the device");
+        check(cudaStreamSynchronize(s), "the upload");
+    }
+    void upload(const std::vector<T>& h, cudaStream_t s) { upload(h.data(), h.size(), s); }
+    T* get() const { return m_p; }
+    size_t size() const { return m_n; }
+
+private:
+    T* m_p = nullptr;
+    size_t m_n = 0;
+};
+
+/// Page-locked host memory (cudaMallocHost), so that copies run asynchronously at full speed.
+template <class T>
+class PinnedArray {
+public:
+    PinnedArray() = default;
+    PinnedArray(const PinnedArray&) = delete;
+    PinnedArray& operator=(const PinnedArray&) = delete;
+    ~PinnedArray() {
+        if (m_p) cudaFreeHost(m_p);
+    }
+    void allocate(size_t n) {
+        if (n <= m_n) return;
+        if (m_p) check(cudaFreeHost(m_p), "cudaFreeHost");
+        m_p = nullptr;
+        check(cudaMallocHost(reinterpret_cast<void**>(&m_p), n * sizeof(T)), "cudaMallocHost");
+        m_n = n;
     }
     T* get() const { return m_p; }
 
@@ -85,33 +111,127 @@ private:
     size_t m_n = 0;
 };
 
+/// The device step of one body: its arrays on the device, its launches on a stream of its own. The
+/// host queues steps without waiting for them; it waits only to read something back (the state,
+/// the forces, the record of a state that is not finite) and when it reuses the pinned buffer of
+/// the targets it uploaded two steps before.
 template <class Law, class T>
 class CudaRunner final : public StepRunner {
 public:
     CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
-        const StepArraysHost<T> h = toArrays<T>(s);
-        m_tet.upload(h.tet);
-        m_slotStart.upload(h.slotStart);
-        m_slots.upload(h.slots);
-        m_dN.upload(h.dN);
-        m_vol.upload(h.vol);
-        m_ef.upload(h.ef);
-        m_hex.upload(h.hex);
-        m_hdN.upload(h.hdN);
-        m_hgC.upload(h.hgC);
-        m_hvol.upload(h.hvol);
-        m_hgK.upload(h.hgK);
-        m_hef.upload(h.hef);
-        m_ext.upload(h.ext);
-        m_mass.upload(h.mass);
-        m_invMass.upload(h.invMass);
-        m_u.upload(h.u);
-        m_v.upload(h.v);
-        m_hold.upload(h.hold);
-        m_tu.upload(h.tu);
-        m_tv.upload(h.tv);
-        m_du.upload(h.du);
-        m_f.upload(h.u);
+        check(cudaStreamCreateWithFlags(&m_stream, cudaStreamNonBlocking), "cudaStreamCreate");
+        for (cudaEvent_t& e : m_targetsCopied) check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
+        upload(toArrays<T>(s));
+        m_p.law = law;
+        m_p.J0 = static_cast<T>(s.J0);
+        m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
+        m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+    }
+    ~CudaRunner() override {
+        cudaStreamSynchronize(m_stream);
+        for (cudaEvent_t e : m_targetsCopied) cudaEventDestroy(e);
+        cudaStreamDestroy(m_stream);
+    }
+    void setState(const std::vector<double>& u, const std::vector<double>& v) override {
+        m_u.upload(std::vector<T>(u.begin(), u.end()), m_stream);
+        m_v.upload(std::vector<T>(v.begin(), v.end()), m_stream);
+        check(cudaMemcpyAsync(m_bad.get(), &kNone, sizeof kNone, cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync to the device");
+        wait();
+    }
+    void getState(std::vector<double>& u, std::vector<double>& v) override {
+        const size_t n = m_u.size();
+        m_stage.allocate(2 * n);
+        download(m_u.get(), m_stage.get(), n);
+        download(m_v.get(), m_stage.get() + n, n);
+        wait();
+        u.assign(m_stage.get(), m_stage.get() + n);
+        v.assign(m_stage.get() + n, m_stage.get() + 2 * n);
+    }
+    void getIncrements(std::vector<double>& du) override {
+        const size_t n = m_du.size();
+        m_stage.allocate(n);
+        download(m_du.get(), m_stage.get(), n);
+        wait();
+        du.assign(m_stage.get(), m_stage.get() + n);
+    }
+    void setIncrements(const std::vector<double>& du) override { m_du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
+    void elementPass() override {
+        if (m_d.nTets > 0) {
+            tetKernel<Law, T><<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
+            check(cudaGetLastError(), "the tetrahedron kernel launch");
+        }
+        if (m_d.nHexes > 0) {
+            hexKernel<Law, T><<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
+            check(cudaGetLastError(), "the hexahedron kernel launch");
+        }
+    }
+    void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
+        // two pinned buffers in turn: the one written now was last copied two steps ago
+        const size_t n = tu.size(), k = m_nextTargets;
+        m_nextTargets ^= 1;
+        check(cudaEventSynchronize(m_targetsCopied[k]), "the copy of earlier targets");
+        m_targets[k].allocate(2 * n);
+        T* h = m_targets[k].get();
+        for (size_t j = 0; j < n; ++j) h[j] = static_cast<T>(tu[j]), h[n + j] = static_cast<T>(tv[j]);
+        check(cudaMemcpyAsync(m_tu.get(), h, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
+        check(cudaMemcpyAsync(m_tv.get(), h + n, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
+        check(cudaEventRecord(m_targetsCopied[k], m_stream), "cudaEventRecord");
+    }
+    void nodePass(const NodeParams<double>& p) override {
+        const NodeParams<T> q = nodeParamsIn<T>(p);
+        if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
+        else eulerKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
+        check(cudaGetLastError(), "the node kernel launch");
+    }
+    void internalForces(std::vector<double>& f) override {
+        gatherKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, m_f.get());
+        check(cudaGetLastError(), "the gather kernel launch");
+        const size_t n = m_f.size();
+        m_stage.allocate(n);
+        download(m_f.get(), m_stage.get(), n);
+        wait();
+        f.assign(m_stage.get(), m_stage.get() + n);
+    }
+    long firstBadStep() override {
+        m_flag.allocate(1);
+        check(cudaMemcpyAsync(m_flag.get(), m_bad.get(), sizeof kNone, cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
+        wait();
+        return *m_flag.get() == kNone ? -1 : static_cast<long>(*m_flag.get());
+    }
+    void wait() override { check(cudaStreamSynchronize(m_stream), "the device step"); }
+
+private:
+    static constexpr unsigned long long kNone = ~0ull;
+    unsigned grid(int n) const { return static_cast<unsigned>((n + m_block - 1) / m_block); }
+    void download(const T* from, T* to, size_t n) {
+        if (n) check(cudaMemcpyAsync(to, from, n * sizeof(T), cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
+    }
+    /// The arrays of h on the device, and m_d pointing at them.
+    void upload(const StepArraysHost<T>& h) {
+        const cudaStream_t s = m_stream;
+        m_tet.upload(h.tet, s);
+        m_slotStart.upload(h.slotStart, s);
+        m_slots.upload(h.slots, s);
+        m_dN.upload(h.dN, s);
+        m_vol.upload(h.vol, s);
+        m_ef.upload(h.ef, s);
+        m_hex.upload(h.hex, s);
+        m_hdN.upload(h.hdN, s);
+        m_hgC.upload(h.hgC, s);
+        m_hvol.upload(h.hvol, s);
+        m_hgK.upload(h.hgK, s);
+        m_hef.upload(h.hef, s);
+        m_ext.upload(h.ext, s);
+        m_mass.upload(h.mass, s);
+        m_invMass.upload(h.invMass, s);
+        m_u.upload(h.u, s);
+        m_v.upload(h.v, s);
+        m_hold.upload(h.hold, s);
+        m_tu.upload(h.tu, s);
+        m_tv.upload(h.tv, s);
+        m_du.upload(h.du, s);
+        m_f.upload(h.u, s);
+        m_bad.upload(&kNone, 1, s);
         m_d.nTets = h.nTets;
         m_d.nNodes = h.nNodes;
         m_d.tet = m_tet.get();
@@ -136,59 +256,20 @@ public:
         m_d.u = m_u.get();
         m_d.v = m_v.get();
         m_d.du = m_du.get();
-        m_p.law = law;
-        m_p.J0 = static_cast<T>(s.J0);
-        m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
-        m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+        m_d.bad = m_bad.get();
     }
-    void setState(const std::vector<double>& u, const std::vector<double>& v) override {
-        m_u.upload(std::vector<T>(u.begin(), u.end()));
-        m_v.upload(std::vector<T>(v.begin(), v.end()));
-    }
-    void getState(std::vector<double>& u, std::vector<double>& v) override {
-        std::vector<T> a, b;
-        m_u.download(a);
-        m_v.download(b);
-        u.assign(a.begin(), a.end());
-        v.assign(b.begin(), b.end());
-    }
-    void elementPass() override {
-        if (m_d.nTets > 0) {
-            tetKernel<Law, T><<<grid(m_d.nTets), m_block>>>(m_d, m_p);
-            check(cudaGetLastError(), "the tetrahedron kernel launch");
-        }
-        if (m_d.nHexes > 0) {
-            hexKernel<Law, T><<<grid(m_d.nHexes), m_block>>>(m_d, m_p);
-            check(cudaGetLastError(), "the hexahedron kernel launch");
-        }
-    }
-    void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
-        // (the same sizes as at the upload above: the device pointers stay)
-        m_tu.upload(std::vector<T>(tu.begin(), tu.end()));
-        m_tv.upload(std::vector<T>(tv.begin(), tv.end()));
-    }
-    void nodePass(const NodeParams<double>& p) override {
-        const NodeParams<T> q = nodeParamsIn<T>(p);
-        if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
-        else eulerKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, q);
-        check(cudaGetLastError(), "the node kernel launch");
-    }
-    void internalForces(std::vector<double>& f) override {
-        gatherKernel<T><<<grid(m_d.nNodes), m_block>>>(m_d, m_f.get());
-        check(cudaGetLastError(), "the gather kernel launch");
-        std::vector<T> h;
-        m_f.download(h);
-        f.assign(h.begin(), h.end());
-    }
-
-private:
-    unsigned grid(int n) const { return static_cast<unsigned>((n + m_block - 1) / m_block); }
     int m_block;
+    bool m_central;
+    cudaStream_t m_stream = nullptr;
     DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
     DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<std::uint32_t> m_hold;
-    bool m_central;
+    DeviceArray<unsigned long long> m_bad;
+    PinnedArray<T> m_stage, m_targets[2];
+    PinnedArray<unsigned long long> m_flag;
+    cudaEvent_t m_targetsCopied[2] = {nullptr, nullptr};
+    int m_nextTargets = 0;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
 };

@@ -1,5 +1,6 @@
 #include "CudaStep.h"
 
+#include "fascia/base/StateIO.h"
 #include "fascia/elements/Errors.h"
 
 #include <algorithm>
@@ -12,6 +13,7 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
     // every component is checked before the device: a scene the GPU cannot run says so anywhere
     b.setup = buildStepSetup(*this, g);
     const Precision p = m_precision.get() == "float" ? Precision::Float : Precision::Double;
+    b.precision = p;
     if (m_emulate.get()) {
         b.runner = makeEmulatedRunner(b.setup, p);
     } else {
@@ -21,6 +23,18 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
         b.runner = makeCudaRunner(b.setup, p, m_blockSize.get());
     }
     b.kick.halfStepStart = b.setup.halfStepStart;
+    b.du.assign(3 * g.state->size(), 0.0);
+    upload(b, g);
+    m_bodies.push_back(std::move(b));
+}
+
+CudaStep::Body& CudaStep::body(const core::MechanicalGroup& g) {
+    auto it = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.state == g.state; });
+    if (it == m_bodies.end()) elements::runtimeError(*this, "the state '" + g.state->path() + "' was not adopted at init");
+    return *it;
+}
+
+void CudaStep::upload(Body& b, const core::MechanicalGroup& g) {
     const size_t n = g.state->size();
     b.u.resize(3 * n);
     b.v.resize(3 * n);
@@ -30,21 +44,44 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
             b.v[3 * i + static_cast<size_t>(c)] = g.state->v()[i][c];
         }
     b.runner->setState(b.u, b.v);
-    m_bodies.push_back(std::move(b));
+    b.xSeen = g.state->x();
+    b.vSeen = g.state->v();
+    b.onHost = true;
 }
 
 void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
-    auto it = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.state == g.state; });
-    if (it == m_bodies.end()) elements::runtimeError(*this, "the state '" + g.state->path() + "' was not adopted at init");
-    Body& b = *it;
+    Body& b = body(g);
+    // a program may have written the state it read (or set before the first step): the device
+    // takes what is there
+    if (b.onHost && (g.state->x() != b.xSeen || g.state->v() != b.vSeen)) upload(b, g);
     b.runner->elementPass();
     NodeParams<double> p = nodeParams(g, b.setup, t, dt, b.kick.next(dt));
+    p.step = static_cast<unsigned long long>(g.stepIndex);
     b.central.next(dt, p);
     if (!b.setup.targetAt.empty()) {
         motionTargets(g, b.setup, t + dt, b.tu, b.tv);
         b.runner->setTargets(b.tu, b.tv);
     }
     b.runner->nodePass(p);
+    b.onHost = false;
+    if (g.stepIndex % m_checkEvery.get() == 0) check(b, g);
+}
+
+void CudaStep::check(Body& b, core::MechanicalGroup& g) {
+    const long bad = b.runner->firstBadStep();
+    if (bad < 0) return;
+    g.firstBadStep = bad;
+    elements::runtimeError(*this, "step " + std::to_string(g.stepIndex) + ": the state '" + g.state->path() +
+                                      "' is not finite on the device since step " + std::to_string(bad) +
+                                      " (found then: the host reads the device's record every " + std::to_string(m_checkEvery.get()) +
+                                      " steps, checkEvery, and whenever it reads the state); a smaller dt, or dt=\"auto\", keeps an "
+                                      "explicit step stable");
+}
+
+void CudaStep::fetch(core::MechanicalGroup& g) {
+    Body& b = body(g);
+    if (b.onHost) return;
+    check(b, g);
     b.runner->getState(b.u, b.v);
     Positions& x = g.state->x();
     Positions& v = g.state->v();
@@ -54,6 +91,85 @@ void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
             x[i][c] = X[i][c] + b.u[3 * i + static_cast<size_t>(c)];
             v[i][c] = b.v[3 * i + static_cast<size_t>(c)];
         }
+    b.xSeen = x;
+    b.vSeen = v;
+    b.onHost = true;
+}
+
+void CudaStep::push(core::MechanicalGroup& g) {
+    Body& b = body(g);
+    if (b.restored) {
+        b.restored = false;
+        b.runner->setState(b.u, b.v);
+        b.xSeen = g.state->x();
+        b.vSeen = g.state->v();
+        b.onHost = true;
+    } else {
+        upload(b, g);
+    }
+    b.runner->setIncrements(b.du);
+}
+
+void CudaStep::wait() {
+    for (Body& b : m_bodies) b.runner->wait();
+}
+
+core::LayoutBytes CudaStep::layoutBytes() const {
+    core::LayoutBytes out;
+    for (const Body& b : m_bodies) {
+        // (the rule of core::LayoutBytes: an array counts once, and once more for each pass writing it)
+        const size_t T = b.precision == Precision::Float ? 4 : 8, I = 4;
+        const size_t nT = static_cast<size_t>(b.setup.nTets), nH = static_cast<size_t>(b.setup.nHexes);
+        const size_t n = static_cast<size_t>(b.setup.nNodes);
+        const bool central = b.setup.scheme == StepSetup::Scheme::CentralDifference;
+        // element kernels: connectivity, rest data, and the forces of their slots, written, then read
+        // by the node kernel
+        out.elementData += nT * (4 * I + 10 * T + 2 * 12 * T) + nH * (8 * I + 38 * T + 2 * 24 * T);
+        // node kernel: u and v read and written (u also read by the element kernels), masses,
+        // external forces, hold codes, the increments of CentralDifference
+        out.nodeRows += n * (2 * 3 * T + 2 * 3 * T + 2 * T + 3 * T + 3 * I + (central ? 2 * 3 * T : 0));
+        // the slot lists of the gather
+        out.buffers += (n + 1) * I + (4 * nT + 8 * nH) * I;
+    }
+    return out;
+}
+
+void CudaStep::saveState(core::StateWriter& out) const {
+    out.put("bodies", long(m_bodies.size()));
+    for (const Body& b : m_bodies) {
+        out.put("state", b.state->path());
+        out.put("kickStarted", b.kick.started);
+        out.put("kickLastDt", b.kick.lastDt);
+        out.put("centralStarted", b.central.started);
+        out.put("centralLastDt", b.central.lastDt);
+        out.put("centralSteps", b.central.steps);
+        // (the core fetched the state before: u and v are the device's)
+        out.put("u", b.u);
+        out.put("v", b.v);
+        std::vector<double> du;
+        b.runner->getIncrements(du);
+        out.put("increments", du);
+    }
+}
+
+void CudaStep::restoreState(core::StateReader& in) {
+    const long n = in.getLong("bodies");
+    if (n != long(m_bodies.size()))
+        in.fail("[" + path() + "] the checkpoint has " + std::to_string(n) + " bodies on the device, this scene " +
+                std::to_string(m_bodies.size()));
+    for (Body& b : m_bodies) {
+        const std::string s = in.getText("state");
+        if (s != b.state->path()) in.fail("[" + path() + "] the checkpoint's body '" + s + "' is not '" + b.state->path() + "'");
+        b.kick.started = in.getBool("kickStarted");
+        b.kick.lastDt = in.getDouble("kickLastDt");
+        b.central.started = in.getBool("centralStarted");
+        b.central.lastDt = in.getDouble("centralLastDt");
+        b.central.steps = in.getLong("centralSteps");
+        in.getInto("u", b.u.data(), b.u.size());
+        in.getInto("v", b.v.data(), b.v.size());
+        in.getInto("increments", b.du.data(), b.du.size());
+        b.restored = true;  // (uploaded by push, after every component read its records)
+    }
 }
 
 } // namespace fascia::cuda

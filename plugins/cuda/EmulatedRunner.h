@@ -19,11 +19,16 @@ public:
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
         m_dev.v.assign(v.begin(), v.end());
+        m_dev.bad = ~0ull;
     }
     void getState(std::vector<double>& u, std::vector<double>& v) override {
         u.assign(m_dev.u.begin(), m_dev.u.end());
         v.assign(m_dev.v.begin(), m_dev.v.end());
     }
+    void getIncrements(std::vector<double>& du) override { du.assign(m_dev.du.begin(), m_dev.du.end()); }
+    void setIncrements(const std::vector<double>& du) override { m_dev.du.assign(du.begin(), du.end()); }
+    long firstBadStep() override { return m_dev.bad == ~0ull ? -1 : static_cast<long>(m_dev.bad); }
+    void wait() override {}
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
         for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);

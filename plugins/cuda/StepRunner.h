@@ -13,19 +13,29 @@ namespace fascia::cuda {
 class StepRunner {
 public:
     virtual ~StepRunner() = default;
-    /// Uploads displacements u = x - X and velocities (3 per node, double).
+    /// Uploads displacements u = x - X and velocities (3 per node, double), and clears the record
+    /// of a state that was not finite (a restore, a replay).
     virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
-    /// Downloads them.
+    /// Downloads them, after every step launched so far.
     virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
-    /// The element kernels over every tetrahedron and every hexahedron.
+    /// CentralDifference's increments u(n) - u(n-1) (StepArrays::du), 3 per node: down and up.
+    virtual void getIncrements(std::vector<double>& du) = 0;
+    virtual void setIncrements(const std::vector<double>& du) = 0;
+    /// The element kernels over every tetrahedron and every hexahedron (launched; the GPU runs them
+    /// in order with the rest, and the host does not wait).
     virtual void elementPass() = 0;
-    /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets).
+    /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets), asynchronously.
     virtual void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) = 0;
     /// The node kernel of the setup's integrator over every node (after an element pass).
     virtual void nodePass(const NodeParams<double>& p) = 0;
     /// The internal nodal forces of the last element pass, each node's slots summed (3 per node;
     /// for tests).
     virtual void internalForces(std::vector<double>& f) = 0;
+    /// The first step (NodeParams::step) whose node pass left a u or v that is not finite, or -1;
+    /// after every step launched so far (one number comes back).
+    virtual long firstBadStep() = 0;
+    /// Waits until every step launched so far is done.
+    virtual void wait() = 0;
 };
 
 /// Which scalar the device step computes in.

@@ -52,6 +52,7 @@ struct StepArraysHost {
     std::vector<std::uint32_t> slots;
     std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, ext, mass, invMass, u, v, tu, tv, du;
     std::vector<std::uint32_t> hold;
+    unsigned long long bad = ~0ull;
 
     /// The StepArrays over these vectors.
     StepArrays<T> view() {
@@ -80,6 +81,7 @@ struct StepArraysHost {
         d.u = u.data();
         d.v = v.data();
         d.du = du.data();
+        d.bad = &bad;
         return d;
     }
 };
@@ -165,6 +167,7 @@ NodeParams<T> nodeParamsIn(const NodeParams<double>& p) {
     q.b = T(p.b);
     q.start = p.start;
     q.twoSteps = p.twoSteps;
+    q.step = p.step;
     return q;
 }
 

@@ -24,6 +24,7 @@ class Monitor : public core::BaseObserver {
 public:
     void init() override;
     void observe(double t, long step) override;
+    bool records(long step) const override { return step % m_every.get() == 0; }
     void observeFinal(double t, long step) override;
     void cleanup() override;
     /// The step of its last row and the length of its file then: a restored run cuts the file back to

@@ -29,6 +29,7 @@ class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
     void observe(double t, long step) override;
+    bool records(long step) const override { return step % m_every.get() == 0; }
     /// The final state of the run, when `every` skipped it.
     void observeFinal(double t, long step) override;
     void cleanup() override;

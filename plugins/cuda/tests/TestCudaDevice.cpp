@@ -2,6 +2,7 @@
 // emulation test checks its kernel bodies on the CPU. Where no device is usable every case exits 77,
 // which ctest reports as skipped (SKIP_RETURN_CODE, plugins/cuda/CMakeLists.txt), never as passed.
 #include "CudaTestSupport.h"
+#include "ResidencyCases.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -112,4 +113,25 @@ TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "
     const double err = displacementError(gpu, emu, ref->state("mo").x0());
     CAPTURE(sci(err));
     CHECK(err <= 1e-11);
+}
+
+TEST_CASE("CudaStep on the GPU keeps the state on the device until it is read", "[CudaStep]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    residency::stateStaysOnDevice("<CudaStep precision=\"" + precision + "\"/>");
+}
+
+TEST_CASE("CudaStep on the GPU takes up what a program writes into the state it read", "[CudaStep]") {
+    requireDevice();
+    residency::writesAreTakenUp("<CudaStep/>");
+}
+
+TEST_CASE("CudaStep on the GPU names the first step whose state is not finite, whatever checkEvery", "[CudaStep]") {
+    requireDevice();
+    residency::firstBadStepFound("<CudaStep");
+}
+
+TEST_CASE("CudaStep on the GPU restarts from a checkpoint bitwise as the run that wrote it", "[CudaStep]") {
+    requireDevice();
+    residency::restartIsBitwise("<CudaStep/>");
 }

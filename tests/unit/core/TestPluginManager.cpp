@@ -102,8 +102,8 @@ TEST_CASE("A plugin built for another ABI is refused with what to do", "[PluginM
     REQUIRE(e);
     CHECK(e->kind() == ErrorKind::Input);
     CHECK(std::string(e->what()) == "s.xml:4: error: plugin '" + file +
-                                        "' was built for ABI 999, this is ABI 4: rebuild it against Fascia " FASCIA_VERSION_TEXT);
-    CHECK(FASCIA_ABI_VERSION == 4);
+                                        "' was built for ABI 999, this is ABI 5: rebuild it against Fascia " FASCIA_VERSION_TEXT);
+    CHECK(FASCIA_ABI_VERSION == 5);
     CHECK(Snapshot() == before);
     CHECK(loaded("fascia.test.abi") == nullptr);
     // refused again, not half-loaded

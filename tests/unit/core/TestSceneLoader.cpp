@@ -592,7 +592,7 @@ TEST_CASE("RequiredPlugin errors are located", "[SceneLoader][PluginManager]") {
 </Node>)");
         REQUIRE(e);
         CHECK(e->loc().line == 2);
-        CHECK_THAT(e->what(), Contains("was built for ABI 999, this is ABI 4: rebuild it against Fascia"));
+        CHECK_THAT(e->what(), Contains("was built for ABI 999, this is ABI 5: rebuild it against Fascia"));
     }
 }
 

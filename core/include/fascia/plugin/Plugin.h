@@ -7,7 +7,9 @@
 /// (new virtual functions) and the load-curve parameters.
 /// 3: BaseTopology holds the boundary triangles (a new member), BaseVisualSurface.
 /// 4: SourceLoc gained a byte offset (its size changed), Base::failOutput.
-#define FASCIA_ABI_VERSION 4
+/// 5: BaseObserver::records, BaseStepBackend::fetch, push and wait (new virtual functions),
+///    MechanicalGroup::firstBadStep.
+#define FASCIA_ABI_VERSION 5
 
 namespace fascia::core {
 

@@ -227,6 +227,10 @@ public:
     /// observe() skipped: an observer that records only some steps records this one too, unless it
     /// already did at this step.
     virtual void observeFinal(double t, long step) {}
+    /// Whether observe(t, step) reads the state at this step (an observer with `every` skips
+    /// steps): a step backend that keeps the state on a device (BaseStepBackend::fetch) brings it
+    /// to the host only for steps that some observer records. Default: every step.
+    virtual bool records(long step) const { return true; }
 };
 
 class BaseStepBackend;
@@ -324,6 +328,9 @@ struct MechanicalGroup {
     /// null. The integrator still gives the group's stable time step and its parameters. (Last, so
     /// that the members plugins built before it read keep their offsets.)
     BaseStepBackend* backend = nullptr;
+    /// Set by a backend that checks the state on its device only every few steps: the first step
+    /// whose result was not finite (-1: none). The last good state is then the start of that step.
+    long firstBadStep = -1;
 
     // The pieces of computeForces and checkStep that the threaded step (ThreadedStep.h) runs by chunks.
     /// What f starts from at time t: the external forces and c(t) g where present.
@@ -351,13 +358,25 @@ struct MechanicalGroup {
 /// so that the device is chosen in one place (docs/design.md, section 4.7). After the groups are
 /// assembled and their masses summed, Simulation::init calls adopt() for each group; a backend that
 /// cannot run a component of the group fails located at that component (never a silent fallback
-/// to the host). Then step() replaces integrator->step() for that group; on return the state's x and
-/// v hold the new state (the finite check and the observers read them). The integrator stays the
+/// to the host). Then step() replaces integrator->step() for that group. The integrator stays the
 /// group's: it still gives the stable time step, and its parameters say what to run.
+/// A backend may keep the state on its device between steps. The Simulation then calls fetch()
+/// before anything on the host reads x and v (observers that record the step, within the step;
+/// Simulation::state and surface; checkpoints and snapshots; finish) and push() after it wrote them
+/// (a restore, a replay). The backend checks the state it runs for divergence itself (the host's
+/// checkStep is not run on its groups): a state that is not finite is a simulation error from
+/// step() or fetch(), with MechanicalGroup::firstBadStep set when it was found steps late.
 class BaseStepBackend : public Component {
 public:
     virtual void adopt(MechanicalGroup& group) = 0;
     virtual void step(MechanicalGroup& group, double t, double dt) = 0;
+    /// Brings the device's state to the group's host x and v (nothing when they are current). A
+    /// program may then write x and v between steps: the next step takes what it finds there.
+    virtual void fetch(MechanicalGroup& group) {}
+    /// The host state was set (a restore or a replay from a snapshot): the device takes it.
+    virtual void push(MechanicalGroup& group) {}
+    /// Waits until the steps it queued on its device are done (a benchmark's timing window).
+    virtual void wait() {}
 };
 
 } // namespace fascia::core

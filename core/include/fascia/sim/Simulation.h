@@ -98,7 +98,15 @@ public:
 
     Node& root() { return *m_root; }
     /// A mechanical state by name or path ("organ", "/root/liver/mo"); throws when there is none.
+    /// With a step backend that keeps the state on a device (CudaStep), it first brings every state
+    /// to the host (fetchState).
     BaseMechanicalState& state(const std::string& nameOrPath);
+    /// Brings every group's x and v to the host when a step backend keeps them on a device
+    /// (BaseStepBackend::fetch; nothing otherwise). state() and surface() call it, and so do the
+    /// observers' steps, checkpoints and finish(); a program that keeps a reference to a state and
+    /// reads it after later steps calls it first. What it then writes into x and v between steps
+    /// is what the next step starts from, as on the host.
+    void fetchState() const;
     /// A surface by name or path: for a mechanical state, its boundary (points: the state's x(),
     /// triangles: the boundary triangles of the mesh source in its context,
     /// BaseTopology::boundaryTriangles); for a visual surface (BaseVisualSurface, e.g.

@@ -64,18 +64,19 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
     const elements::NodeRows<1, T> dN{g};
     const elements::Mat33<T> P = detail::scaledStress(p, elements::deformationGradientTet(u, dN, 0), d.vol[e]);
     T s0 = 0, s1 = 0, s2 = 0;
+    T* out = d.ef + 12 * static_cast<size_t>(e);
     for (int a = 1; a < 4; ++a) {
         const elements::Vec33<T> f = elements::nodalForce(P, dN.at(a - 1, 0, 0), dN.at(a - 1, 1, 0), dN.at(a - 1, 2, 0));
-        d.ef[(3 * a + 0) * n + e] = f.x;
-        d.ef[(3 * a + 1) * n + e] = f.y;
-        d.ef[(3 * a + 2) * n + e] = f.z;
+        out[3 * a + 0] = f.x;
+        out[3 * a + 1] = f.y;
+        out[3 * a + 2] = f.z;
         s0 += f.x;
         s1 += f.y;
         s2 += f.z;
     }
-    d.ef[0 * n + e] = -s0;
-    d.ef[1 * n + e] = -s1;
-    d.ef[2 * n + e] = -s2;
+    out[0] = -s0;
+    out[1] = -s1;
+    out[2] = -s2;
 }
 
 /// The forces of hexahedron e on its 8 corners (uniform strain with hourglass control,
@@ -98,8 +99,9 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
     const elements::Mat33<T> P = detail::scaledStress(p, F, d.hvol[e]);
     elements::NodalBatch<8, 1, T> f;
     elements::hexNodalForces(P, d.hgK[e], elements::NodeRows<1, T>{h}, cq, dN, 0, f);
+    T* out = d.hef + 24 * static_cast<size_t>(e);
     for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < 3; ++i) d.hef[(3 * a + i) * n + e] = f.v[a][i][0];
+        for (int i = 0; i < 3; ++i) out[3 * a + i] = f.v[a][i][0];
 }
 
 /// The internal force on node `node`: its slots summed in their fixed order.
@@ -109,12 +111,10 @@ FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, i
     for (int k = d.slotStart[node]; k < d.slotStart[node + 1]; ++k) {
         const std::uint32_t s = d.slots[k];
         const int e = static_cast<int>(s >> 3), a = static_cast<int>(s & 7u);
-        const bool tet = e < d.nTets;
-        const T* ef = tet ? d.ef : d.hef;
-        const int n = tet ? d.nTets : d.nHexes, at = tet ? e : e - d.nTets;
-        f0 += ef[(3 * a + 0) * n + at];
-        f1 += ef[(3 * a + 1) * n + at];
-        f2 += ef[(3 * a + 2) * n + at];
+        const T* ef = e < d.nTets ? d.ef + 3 * (4 * static_cast<size_t>(e) + a) : d.hef + 3 * (8 * static_cast<size_t>(e - d.nTets) + a);
+        f0 += ef[0];
+        f1 += ef[1];
+        f2 += ef[2];
     }
     return {f0, f1, f2};
 }
@@ -140,12 +140,26 @@ FASCIA_HD FASCIA_INLINE bool project(const StepArrays<T>& d, int node, int i, T&
     return true;
 }
 
+/// Keeps the step's number in d.bad when probe, a sum of (u - u) and (v - v) over the node's new
+/// values, is not 0 (x - x is 0 for a finite x and NaN otherwise): the smallest such step stays
+/// (atomicMin on the device, an integer: no effect on any result; a plain min in the emulation).
+template <class T>
+FASCIA_HD FASCIA_INLINE void flagNonFinite(const StepArrays<T>& d, const NodeParams<T>& p, T probe) {
+    if (probe == T(0)) return;
+#ifdef __CUDA_ARCH__
+    atomicMin(d.bad, p.step);
+#else
+    if (p.step < *d.bad) *d.bad = p.step;
+#endif
+}
+
 /// One SemiImplicitEuler step of node `node` (HEML eq. (32)): v += kick (f/m - alpha v), u += dt v.
 template <class T>
 FASCIA_HD FASCIA_INLINE void eulerStep(const StepArrays<T>& d, const NodeParams<T>& p, int node) {
     T f[3];
     nodeForce(d, p, node, f);
     const T im = d.invMass[node];
+    T probe = 0;
     for (int i = 0; i < 3; ++i) {
         T v = d.v[3 * node + i];
         v += p.kick * (im * f[i] - p.alpha * v);
@@ -153,7 +167,9 @@ FASCIA_HD FASCIA_INLINE void eulerStep(const StepArrays<T>& d, const NodeParams<
         project(d, node, i, u, v);
         d.u[3 * node + i] = u;
         d.v[3 * node + i] = v;
+        probe += (u - u) + (v - v);
     }
+    flagNonFinite(d, p, probe);
 }
 
 /// One CentralDifference step of node `node` (TLED section 2, damped, as plugins/mechanics/
@@ -169,6 +185,7 @@ FASCIA_HD FASCIA_INLINE void centralStep(const StepArrays<T>& d, const NodeParam
     T f[3];
     nodeForce(d, p, node, f);
     const T im = d.invMass[node], dt = p.dt, dt2 = dt * dt;
+    T probe = 0;
     for (int i = 0; i < 3; ++i) {
         const T un = d.u[3 * node + i], vn = d.v[3 * node + i];
         const T dn = p.start ? dt * vn - T(0.5) * dt * dt * (im * f[i] - p.alpha * vn) : d.du[3 * node + i];
@@ -181,7 +198,9 @@ FASCIA_HD FASCIA_INLINE void centralStep(const StepArrays<T>& d, const NodeParam
         d.du[3 * node + i] = project(d, node, i, u, v) ? u - un : dnext;
         d.u[3 * node + i] = u;
         d.v[3 * node + i] = v;
+        probe += (u - u) + (v - v);
     }
+    flagNonFinite(d, p, probe);
 }
 
 } // namespace fascia::cuda

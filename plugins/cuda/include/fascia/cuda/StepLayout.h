@@ -14,14 +14,17 @@ namespace fascia::cuda {
 ///   tet[a nTets + e]             node of corner a
 ///   dN[(3 (a-1) + i) nTets + e]  dN_a/dX_i for a = 1..3 (dN_0 = -(dN_1 + dN_2 + dN_3))
 ///   vol[e]                       rest volume
-///   ef[(3 a + i) nTets + e]      the element's force on its corner a (written by the element
-///                                kernel, each element to its own slots: no atomics)
+///   ef[3 (4 e + a) + i]          the element's force on its corner a (written by the element
+///                                kernel, each element to its own slots: no atomics), by element
+///                                and corner so that the node kernel reads a slot's three
+///                                components from one 32-byte sector (a row per component took
+///                                three), and a warp's writes cover one contiguous range
 /// Hexahedron e (uniform strain with hourglass control, fascia/elements/Hourglass.h), corner a (0..7):
 ///   hex[a nHexes + e]            node of corner a (VTK order)
 ///   hdN[(3 a + i) nHexes + e]    volume-averaged dN_a/dX_i
 ///   hgC[(3 q + i) nHexes + e]    hourglass vector c_q (q = 0..3)
 ///   hvol[e], hgK[e]              rest volume, hourglass stiffness K
-///   hef[(3 a + i) nHexes + e]    the element's force on its corner a
+///   hef[3 (8 e + a) + i]         the element's force on its corner a
 /// Node n, component i:
 ///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
 ///                                tetrahedra, then the hexahedra (e - nTets), by element then
@@ -35,6 +38,9 @@ namespace fascia::cuda {
 ///                                constraint that holds the axis decides, as in projectState)
 ///   tu[j], tv[j]                 the targets' displacement and velocity at t + dt (set every step)
 ///   du[3 n + i]                  CentralDifference: the increment u(n) - u(n-1) of the last step
+///   bad[0]                       the first step whose node pass left a u or v that is not finite
+///                                (all ones: none; the state stays on the device, so the host reads
+///                                this one number to check it: CudaStep's checkEvery)
 template <class T>
 struct StepArrays {
     int nTets = 0, nNodes = 0;
@@ -60,6 +66,7 @@ struct StepArrays {
     T* u = nullptr;
     T* v = nullptr;
     T* du = nullptr;
+    unsigned long long* bad = nullptr;
 };
 
 /// What the element kernel needs besides the arrays: the law (by value, its parameters as the
@@ -76,13 +83,15 @@ struct ElementParams {
 /// the leapfrog start); for CentralDifference (TLED section 2) a = alpha dt/2 and b = a / (1 + a)
 /// (its c2 = 1 - a and c1 = 1 / (1 + a) = 1 - b, which in float would hold a to 1e-3 only: b and a
 /// keep it to 1e-7), whether this step (re)starts the scheme (x(-1) from x(0), v(0), a(0)) and
-/// whether a step with this dt came before (the backward-difference velocity).
+/// whether a step with this dt came before (the backward-difference velocity); the step's number
+/// (MechanicalGroup::stepIndex), kept in StepArrays::bad when the step leaves a state that is not finite.
 template <class T>
 struct NodeParams {
     T g[3];
     T dt, kick, alpha;
     T a = 0, b = 0;
     bool start = false, twoSteps = false;
+    unsigned long long step = 0;
 };
 
 } // namespace fascia::cuda
