@@ -65,7 +65,8 @@ std::string findMesh(const std::string& name) {
 std::string sceneXml(const Case& c) {
     std::ostringstream s;
     s << "<Node name=\"root\" dt=\"1e-5\">\n";
-    if (c.device == "cuda") s << "  <CudaStep precision=\"" << c.precision << "\"/>\n";
+    if (!c.device.empty())
+        s << "  <CudaStep precision=\"" << c.precision << "\"" << (c.device == "emulate" ? " emulate=\"true\"" : "") << "/>\n";
     s << "  <Node name=\"body\">\n";
     if (!c.mesh.empty())
         s << "    <MeshLoader name=\"loader\" filename=\"" << fs::absolute(c.mesh).string() << "\"/>\n";

@@ -44,7 +44,8 @@ usage:
   --node-buffers L  TLED's block force buffers: auto (default), range (each block's node range)
                   or compact (one row per node of the block); with --suite, every TLED case
   --device D      cpu (default) or cuda: the whole step on a CUDA GPU (a CudaStep in the root
-                  node; TLED only; --precision is then double or float). The host queues the
+                  node; TLED only; --precision is then double or float; emulate: the same through
+                  CudaStep's CPU emulation, one thread, to check the bench's path). The host queues the
                   steps; each timed window ends with one wait for the device, and no state comes
                   back (no snapshot: Simulation::setSnapshotEvery(0)). Steps are timed by whole
                   windows (median_step_ms is a window's mean); bytes_per_element_step counts the
@@ -436,8 +437,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (c.device == "cpu") c.device.clear();
-    if (!c.device.empty() && c.device != "cuda") {
-        std::cerr << "fascia-bench: --device is cpu or cuda\n";
+    if (!c.device.empty() && c.device != "cuda" && c.device != "emulate") {
+        std::cerr << "fascia-bench: --device is cpu, cuda or emulate\n";
         return 1;
     }
     if (c.device.empty() ? c.precision != "double" && c.precision != "mixed" : c.precision != "double" && c.precision != "float") {
@@ -445,7 +446,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (!c.device.empty() && (c.forcefield != "TLED" || c.reference || c.contend)) {
-        std::cerr << "fascia-bench: --device cuda runs TLED (--forcefield TLED), without --reference or --contend\n";
+        std::cerr << "fascia-bench: --device " << c.device << " runs TLED (--forcefield TLED), without --reference or --contend\n";
         return 1;
     }
     if (!c.nodeBuffers.empty() && c.nodeBuffers != "auto" && c.nodeBuffers != "range" && c.nodeBuffers != "compact") {

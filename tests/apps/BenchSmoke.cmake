@@ -16,7 +16,7 @@ function(bench_matches regex)
   endif()
 endfunction()
 
-bench_matches("\"elements\": 729, .*\"median_step_ms\": [0-9.]+, \"p90_step_ms\": [0-9.]+, \"p99_step_ms\": [0-9.]+.*\"ns_per_element_step\": [0-9.]+, \"forcefield_ns_per_element\": [0-9.]+, \"bytes_per_element_step\": [0-9.]+, .*\"bitwise_identical_1_vs_2_threads\": true}"
+bench_matches("\"elements\": 729, .*\"median_step_ms\": [0-9.]+, \"p90_step_ms\": [0-9.]+, \"p99_step_ms\": [0-9.]+.*\"ns_per_element_step\": [0-9.]+, \"steps_per_s\": [0-9]+, \"element_steps_per_s\": [0-9.e+]+, \"forcefield_ns_per_element\": [0-9.]+, \"bytes_per_element_step\": [0-9.]+, .*\"bitwise_identical_1_vs_2_threads\": true}"
   --forcefield TLED --material NeoHookean --cube 9 --element hexahedra --steps 3 --repeat 1 --determinism)
 
 bench_matches("^{\"forcefield\": \"reference\", \"material\": \"NeoHookean\", .*\"elements\": 384, .*\"contend\": true, \"contend_core\": -?[0-9]+, \"contend_cpu_s\": [0-9.]+}\n{\"forcefield\": \"TLED\", .*\"elements\": 384, .*\"step_time_vs_first\": [0-9.]+, .*\"contend\": true"
@@ -40,3 +40,22 @@ execute_process(COMMAND ${FASCIA_BENCH} --node-buffers wide RESULT_VARIABLE rc O
 if(rc EQUAL 0 OR NOT err MATCHES "--node-buffers is auto, range or compact")
   message(FATAL_ERROR "fascia-bench --node-buffers wide: exit ${rc}, ${err}")
 endif()
+# --device: the device path of the bench (a CudaStep in the root node, one wait per timed window,
+# the bytes of the device layout) through CudaStep's emulation where the cuda plugin is built; on
+# --device cuda without a GPU, the located error of CudaStep (exit 2), never a CPU figure; an
+# unknown device and a CPU precision on the device refused
+if(FASCIA_CUDA)
+  bench_matches("\"forcefield\": \"TLED\", .*\"elements\": 384, .*\"precision\": \"float\", \"device\": \"emulate\", .*\"element_steps_per_s\": [0-9.e+]+, \"bytes_per_element_step\": [0-9.]+, "
+    --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate --precision float)
+  execute_process(COMMAND ${FASCIA_BENCH} --forcefield TLED --cube 4 --steps 5 --repeat 1 --device cuda
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT (rc EQUAL 0 AND out MATCHES "\"device\": \"cuda\"") AND NOT (rc EQUAL 2 AND err MATCHES "CudaStep.*no usable CUDA device"))
+    message(FATAL_ERROR "fascia-bench --device cuda: exit ${rc}, ${out} ${err}")
+  endif()
+endif()
+foreach(args "--device;opencl" "--device;cuda;--forcefield;TLED;--precision;mixed" "--device;cuda;--forcefield;HEML")
+  execute_process(COMMAND ${FASCIA_BENCH} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+  if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --(device|precision)")
+    message(FATAL_ERROR "fascia-bench ${args}: exit ${rc}, ${err}")
+  endif()
+endforeach()
