@@ -9,6 +9,7 @@
 #      through ctest, one case a process, on all cores (ctest.log; the per-case output of any
 #      failure in failures.log);
 #   5. runs `fascia-bench --suite gpu` (bench.json: one JSON object a case; bench.log its errors),
+#      then the split of a step between its kernels and two other block sizes at 2M tetrahedra,
 #      unless FASCIA_GPU_BENCH=0, for at most FASCIA_GPU_BENCH_SECONDS (default 240; the quick
 #      figures come first, each line is written when it is done);
 #   6. writes SUMMARY.txt into OUT_DIR.
@@ -54,16 +55,17 @@ say "built in $(( $(date +%s) - t0 )) s"
 
 export LD_LIBRARY_PATH="$deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 rc=0
-(cd "$build" && ctest -R '^(test_cuda_emulation|test_cuda_device):' -j"$nproc" --timeout 300 > "$out/ctest.log" 2>&1)
+# (labels cuda-emulation and cuda-device: every case of both tests, one process a case)
+(cd "$build" && ctest -L cuda- -j"$nproc" --timeout 300 > "$out/ctest.log" 2>&1)
 r=$?
-say "ctest (cuda tests, -j$nproc): exit $r, $(grep -E 'tests passed|tests failed' "$out/ctest.log" | tail -1)"
-skipped=$(grep -c 'Skipped' "$out/ctest.log")
-say "  skipped cases: $skipped; device cases run: $(grep -E 'test_cuda_device:' "$out/ctest.log" | grep -vc 'Skipped')"
-grep -E '\*\*\*Failed|Not Run|Timeout' "$out/ctest.log" | head -20 | tee -a "$summary"
-if [ $r -ne 0 ]; then
+devcases=$(cd "$build" && ctest -N -L cuda-device | grep -c 'Test *#')
+say "ctest -L cuda- -j$nproc: exit $r, $(grep -E 'tests passed|tests failed' "$out/ctest.log" | tail -1)"
+say "  device cases: $devcases, skipped: $(grep -c '(Skipped)' "$out/ctest.log")"
+grep -E '\*\*\*Failed|Not Run|Timeout|No tests' "$out/ctest.log" | head -20 | tee -a "$summary"
+if [ $r -ne 0 ] || [ "$devcases" -eq 0 ]; then
     rc=1
-    (cd "$build" && ctest -R '^(test_cuda_emulation|test_cuda_device):' --rerun-failed --output-on-failure > "$out/failures.log" 2>&1)
-elif grep -q 'test_cuda_device:.*Skipped' "$out/ctest.log"; then
+    (cd "$build" && ctest -L cuda- --rerun-failed --output-on-failure > "$out/failures.log" 2>&1)
+elif grep -q '(Skipped)' "$out/ctest.log"; then
     rc=77
 fi
 say "tests done at $(( $(date +%s) - t0 )) s"
@@ -75,6 +77,30 @@ if [ "${FASCIA_GPU_BENCH:-1}" != 0 ]; then
     # one line a case: device, precision, material, elements, ns per element-step, rates
     sed -E 's/.*"material": "([^"]*)".*"elements": ([0-9]+).*"precision": "([^"]*)"(, "device": "cuda")?.*"ns_per_element_step": ([0-9.]+), "steps_per_s": ([0-9]+), "element_steps_per_s": ([0-9.e+]+).*/  \3 \1 \2 el: \5 ns\/el-step, \6 steps\/s, \7 el-steps\/s\4/' \
         "$out/bench.json" | tee -a "$summary"
+    # the split of a step between its two kernels (FASCIA_CUDA_TIMING: each pass timed and waited
+    # for), and other block sizes than the default 256, at 2M tetrahedra (appended to bench.json and
+    # bench.log)
+    for p in float double; do
+        (cd "$src" && FASCIA_CUDA_TIMING=1 timeout 60 "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean \
+            --cube 70 --precision $p --steps 100 --repeat 1 >> "$out/bench.json" 2>> "$out/bench.log")
+        say "  $p, 2.06M tetrahedra: $(grep cuda-timing "$out/bench.log" | tail -1)"
+    done
+    for b in 128 512; do
+        (cd "$src" && timeout 60 "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean \
+            --cube 70 --precision float --steps 500 --repeat 3 --cuda-block $b >> "$out/bench.json" 2>> "$out/bench.log")
+        say "  float, 2.06M tetrahedra, block $b: $(tail -1 "$out/bench.json" | grep -oE '"ns_per_element_step": [0-9.]+')"
+    done
 fi
+# with FASCIA_GPU_NCU=1 and Nsight Compute (ncu) on the PATH or in the toolkit: the kernels' own
+# DRAM traffic, time and occupancy at 2M tetrahedra in float (ncu.txt), for the bandwidth reached
+ncu=$(command -v ncu || ls /usr/local/cuda/bin/ncu 2>/dev/null | head -1)
+if [ "${FASCIA_GPU_NCU:-0}" = 1 ] && [ -n "$ncu" ]; then
+    (cd "$src" && timeout 120 "$ncu" --launch-skip 20 --launch-count 4 \
+        --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,dram__throughput.avg.pct_of_peak_sustained_elapsed,lts__t_bytes.sum,sm__warps_active.avg.pct_of_peak_sustained_active,launch__registers_per_thread,launch__occupancy_limit_registers \
+        "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean --cube 70 --precision float --steps 20 --repeat 1 \
+        > "$out/ncu.txt" 2>&1)
+    say "ncu: exit $? (ncu.txt)"
+fi
+[ $rc -ne 1 ] && rm -f "$out/configure.log"  # (at most 8 files come back from a GPU lease)
 say "total $(( $(date +%s) - t0 )) s, exit $rc"
 exit $rc

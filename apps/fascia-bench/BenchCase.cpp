@@ -66,7 +66,8 @@ std::string sceneXml(const Case& c) {
     std::ostringstream s;
     s << "<Node name=\"root\" dt=\"1e-5\">\n";
     if (!c.device.empty())
-        s << "  <CudaStep precision=\"" << c.precision << "\"" << (c.device == "emulate" ? " emulate=\"true\"" : "") << "/>\n";
+        s << "  <CudaStep precision=\"" << c.precision << "\"" << (c.device == "emulate" ? " emulate=\"true\"" : "")
+          << (c.block > 0 ? " blockSize=\"" + std::to_string(c.block) + "\"" : "") << "/>\n";
     s << "  <Node name=\"body\">\n";
     if (!c.mesh.empty())
         s << "    <MeshLoader name=\"loader\" filename=\"" << fs::absolute(c.mesh).string() << "\"/>\n";

@@ -24,7 +24,7 @@ usage:
   fascia-bench [--forcefield HEML|TLED] [--material NAME] [--mesh FILE | --cube N]
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
                [--viscous] [--precision double|mixed] [--node-buffers auto|range|compact]
-               [--determinism] [--reference] [--contend] [--device cpu|cuda]
+               [--determinism] [--reference] [--contend] [--device cpu|cuda] [--cuda-block B]
   fascia-bench --suite [NAME] [--steps N] [--repeat R] [--reference] [--contend] [--cubes LIST]
   fascia-bench --overhead N [--steps N] [--repeat R]
   fascia-bench --load SCENE.xml [--repeat R]
@@ -50,6 +50,7 @@ usage:
                   back (no snapshot: Simulation::setSnapshotEvery(0)). Steps are timed by whole
                   windows (median_step_ms is a window's mean); bytes_per_element_step counts the
                   device step's arrays (CudaStep::layoutBytes)
+  --cuda-block B  threads per block of the device's launches (CudaStep blockSize; default 256)
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
@@ -428,6 +429,7 @@ int main(int argc, char** argv) {
         else if (a == "--determinism") c.determinism = true;
         else if (a == "--contend") c.contend = true;
         else if (a == "--device") c.device = str("--device");
+        else if (a == "--cuda-block") c.block = parseInt(next(), "--cuda-block");
         else if (a == "--scene") printScene = true;
         else if (a == "--reference") options.reference = true;
         else if (a == "--cubes") options.cubes = parseList(next(), "--cubes");

@@ -9,6 +9,8 @@
 
 #include <cuda_runtime.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace fascia::cuda {
@@ -111,6 +113,48 @@ private:
     size_t m_n = 0;
 };
 
+/// The split of a step between its kernels, for tools/gpu-check.sh: with FASCIA_CUDA_TIMING=1 in
+/// the environment each pass is timed by events and waited for (so the host no longer queues steps
+/// ahead), and the means go to stderr when the runner ends.
+class PassTimer {
+public:
+    PassTimer() : m_on(std::getenv("FASCIA_CUDA_TIMING") && std::string(std::getenv("FASCIA_CUDA_TIMING")) == "1") {
+        if (m_on) {
+            check(cudaEventCreate(&m_start), "cudaEventCreate");
+            check(cudaEventCreate(&m_stop), "cudaEventCreate");
+        }
+    }
+    PassTimer(const PassTimer&) = delete;
+    PassTimer& operator=(const PassTimer&) = delete;
+    ~PassTimer() {
+        if (!m_on) return;
+        if (m_count[0] > 0)
+            std::fprintf(stderr, "cuda-timing: element pass %.5f ms, node pass %.5f ms (means over %ld and %ld passes)\n",
+                         m_ms[0] / double(m_count[0]), m_count[1] ? m_ms[1] / double(m_count[1]) : 0.0, m_count[0], m_count[1]);
+        cudaEventDestroy(m_start);
+        cudaEventDestroy(m_stop);
+    }
+    /// Runs launch() on stream s, timed as pass k (0 elements, 1 nodes) when timing is on.
+    template <class F>
+    void run(int k, cudaStream_t s, F&& launch) {
+        if (m_on) check(cudaEventRecord(m_start, s), "cudaEventRecord");
+        launch();
+        if (!m_on) return;
+        check(cudaEventRecord(m_stop, s), "cudaEventRecord");
+        check(cudaEventSynchronize(m_stop), "cudaEventSynchronize");
+        float ms = 0;
+        check(cudaEventElapsedTime(&ms, m_start, m_stop), "cudaEventElapsedTime");
+        m_ms[k] += ms;
+        ++m_count[k];
+    }
+
+private:
+    bool m_on;
+    cudaEvent_t m_start = nullptr, m_stop = nullptr;
+    double m_ms[2] = {0, 0};
+    long m_count[2] = {0, 0};
+};
+
 /// The device step of one body: its arrays on the device, its launches on a stream of its own. The
 /// host queues steps without waiting for them; it waits only to read something back (the state,
 /// the forces, the record of a state that is not finite) and when it reuses the pinned buffer of
@@ -156,14 +200,16 @@ public:
     }
     void setIncrements(const std::vector<double>& du) override { m_du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
     void elementPass() override {
-        if (m_d.nTets > 0) {
-            tetKernel<Law, T><<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
-            check(cudaGetLastError(), "the tetrahedron kernel launch");
-        }
-        if (m_d.nHexes > 0) {
-            hexKernel<Law, T><<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
-            check(cudaGetLastError(), "the hexahedron kernel launch");
-        }
+        m_timer.run(0, m_stream, [&] {
+            if (m_d.nTets > 0) {
+                tetKernel<Law, T><<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
+                check(cudaGetLastError(), "the tetrahedron kernel launch");
+            }
+            if (m_d.nHexes > 0) {
+                hexKernel<Law, T><<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
+                check(cudaGetLastError(), "the hexahedron kernel launch");
+            }
+        });
     }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
         // two pinned buffers in turn: the one written now was last copied two steps ago
@@ -179,9 +225,11 @@ public:
     }
     void nodePass(const NodeParams<double>& p) override {
         const NodeParams<T> q = nodeParamsIn<T>(p);
-        if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
-        else eulerKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
-        check(cudaGetLastError(), "the node kernel launch");
+        m_timer.run(1, m_stream, [&] {
+            if (m_central) centralKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
+            else eulerKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, q);
+            check(cudaGetLastError(), "the node kernel launch");
+        });
     }
     void internalForces(std::vector<double>& f) override {
         gatherKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, m_f.get());
@@ -270,6 +318,7 @@ private:
     PinnedArray<unsigned long long> m_flag;
     cudaEvent_t m_targetsCopied[2] = {nullptr, nullptr};
     int m_nextTargets = 0;
+    PassTimer m_timer;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
 };

@@ -54,7 +54,7 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     for (int w = 0; w < 2; ++w)
         if (const Vec3* d = m->fibreDirection(w)) {
             const Vec3 n = d->normalized();
-            (w == 0 ? s.a0 : s.b0) = {n[0], n[1], n[2]};
+            (w == 0 ? s.a0 : s.b0) = elements::Vec33<double>{n[0], n[1], n[2]};
         }
     // a viscous model beside the force field relaxes its stress: not on the device yet
     if (ff.node())
