@@ -20,16 +20,17 @@ void check(cudaError_t e, const char* what) {
         core::throwSimulationError(std::string("[CudaStep] ") + what + " failed: " + cudaGetErrorName(e) + ": " + cudaGetErrorString(e));
 }
 
-template <class Law, class T>
+// (Relaxed: with the Prony series, a kernel of its own, so that the elastic one keeps its registers)
+template <class Law, class T, bool Relaxed = false>
 __global__ void tetKernel(StepArrays<T> d, ElementParams<Law, T> p) {
     const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nTets) tetForces(d, p, e);
+    if (e < d.nTets) tetForces<Relaxed>(d, p, e);
 }
 
-template <class Law, class T>
+template <class Law, class T, bool Relaxed = false>
 __global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
     const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nHexes) hexForces(d, p, e);
+    if (e < d.nHexes) hexForces<Relaxed>(d, p, e);
 }
 
 template <class T>
@@ -102,6 +103,8 @@ public:
         m_hvol.upload(h.hvol);
         m_hgK.upload(h.hgK);
         m_hef.upload(h.hef);
+        m_Y.upload(h.Y);
+        m_hY.upload(h.hY);
         m_ext.upload(h.ext);
         m_mass.upload(h.mass);
         m_invMass.upload(h.invMass);
@@ -125,6 +128,8 @@ public:
         m_d.hvol = m_hvol.get();
         m_d.hgK = m_hgK.get();
         m_d.hef = m_hef.get();
+        m_d.Y = m_Y.get();
+        m_d.hY = m_hY.get();
         m_d.slotStart = m_slotStart.get();
         m_d.slots = m_slots.get();
         m_d.ext = m_ext.get();
@@ -140,6 +145,11 @@ public:
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
         m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+        m_p.prony = pronyParams<T>(s);
+        if (m_p.prony.series > 0) {
+            m_tetKernel = tetKernel<Law, T, true>;
+            m_hexKernel = hexKernel<Law, T, true>;
+        }
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_u.upload(std::vector<T>(u.begin(), u.end()));
@@ -154,14 +164,15 @@ public:
     }
     void elementPass() override {
         if (m_d.nTets > 0) {
-            tetKernel<Law, T><<<grid(m_d.nTets), m_block>>>(m_d, m_p);
+            m_tetKernel<<<grid(m_d.nTets), m_block>>>(m_d, m_p);
             check(cudaGetLastError(), "the tetrahedron kernel launch");
         }
         if (m_d.nHexes > 0) {
-            hexKernel<Law, T><<<grid(m_d.nHexes), m_block>>>(m_d, m_p);
+            m_hexKernel<<<grid(m_d.nHexes), m_block>>>(m_d, m_p);
             check(cudaGetLastError(), "the hexahedron kernel launch");
         }
     }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
         // (the same sizes as at the upload above: the device pointers stay)
         m_tu.upload(std::vector<T>(tu.begin(), tu.end()));
@@ -186,11 +197,13 @@ private:
     int m_block;
     DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<std::uint32_t> m_hold;
     bool m_central;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
+    using ElementKernel = void (*)(StepArrays<T>, ElementParams<Law, T>);
+    ElementKernel m_tetKernel = tetKernel<Law, T>, m_hexKernel = hexKernel<Law, T>;  ///< the relaxed ones with Prony series
 };
 
 } // namespace

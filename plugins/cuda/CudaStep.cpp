@@ -37,6 +37,17 @@ void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
     auto it = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.state == g.state; });
     if (it == m_bodies.end()) elements::runtimeError(*this, "the state '" + g.state->path() + "' was not adopted at init");
     Body& b = *it;
+    if (!b.setup.series.empty()) {
+        // the device evaluates the forces once a step, at its start: the history advances every step,
+        // with the coefficients TLEDForceField's beginForces takes (viscoelastic/HistoryClock.h)
+        b.clock.beginEvaluation(t, dt);
+        pronyCoefficients(b.setup, b.clock.elapsed(), dt, b.nextA, b.nextB);
+        if (b.nextA != b.A || b.nextB != b.B) {
+            b.A = b.nextA;
+            b.B = b.nextB;
+            b.runner->setRelaxation(b.A, b.B);
+        }
+    }
     b.runner->elementPass();
     NodeParams<double> p = nodeParams(g, b.setup, t, dt, b.kick.next(dt));
     b.central.next(dt, p);

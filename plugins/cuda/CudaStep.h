@@ -1,7 +1,8 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
 /// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernels on
-/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h), then a node kernel that sums each
+/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h, relaxed by its ViscoelasticProny
+/// series as TLEDForceField relaxes it, the states on the device), then a node kernel that sums each
 /// node's element forces in a fixed order, adds ConstantForce and gravity, integrates with
 /// SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the axes of FixedConstraint and
 /// PrescribedDisplacement where they hold them, in float or double. A component it cannot run is
@@ -9,9 +10,11 @@
 /// the host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
 /// This slice copies x and v back after every step, so that observers and the finite check read
 /// them as on the CPU (and PrescribedDisplacement's targets are read from the host state after
-/// projectState, motionTargets).
+/// projectState, motionTargets). The Prony history advances once a step, over the time the host's
+/// HistoryClock gives (the coefficients of dt, as TLEDForceField's forces at the start of each step).
 #include "StepRunner.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <memory>
 #include <vector>
@@ -39,6 +42,9 @@ private:
         CentralRule central;
         std::vector<double> tu, tv;  ///< the targets of the step (motionTargets)
         std::vector<double> u, v;
+        viscoelastic::HistoryClock clock;  ///< when the Prony history advances, over what time (as TLEDForceField)
+        std::vector<double> A, B;          ///< the Prony coefficients the runner holds
+        std::vector<double> nextA, nextB;  ///< those of the step
     };
     std::vector<Body> m_bodies;
 };

@@ -15,6 +15,7 @@ public:
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
         m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+        m_p.prony = pronyParams<T>(s);
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
@@ -26,9 +27,15 @@ public:
     }
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
+        if (m_p.prony.series > 0) {
+            for (int e = 0; e < d.nTets; ++e) tetForces<true>(d, m_p, e);
+            for (int e = 0; e < d.nHexes; ++e) hexForces<true>(d, m_p, e);
+            return;
+        }
         for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
         for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
     }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
         m_dev.tu.assign(tu.begin(), tu.end());
         m_dev.tv.assign(tv.begin(), tv.end());

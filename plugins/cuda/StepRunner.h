@@ -17,8 +17,13 @@ public:
     virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
     /// Downloads them.
     virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
-    /// The element kernels over every tetrahedron and every hexahedron.
+    /// The element kernels over every tetrahedron and every hexahedron (each advances its Prony
+    /// states, StepArrays Y, once).
     virtual void elementPass() = 0;
+    /// The coefficients A_i, B_i of the Prony series for the next element passes (TLED eq. (30)),
+    /// term by term, the series in order (pronyCoefficients); until the first call the series relax
+    /// nothing (A = B = 0). Set when they change (CudaStep: the first step, a change of dt).
+    virtual void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) = 0;
     /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets).
     virtual void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) = 0;
     /// The node kernel of the setup's integrator over every node (after an element pass).
