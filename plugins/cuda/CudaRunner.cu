@@ -22,16 +22,17 @@ void check(cudaError_t e, const char* what) {
         core::throwSimulationError(std::string("[CudaStep] ") + what + " failed: " + cudaGetErrorName(e) + ": " + cudaGetErrorString(e));
 }
 
-template <class Law, class T>
+// (Relaxed: with the Prony series, a kernel of its own, so that the elastic one keeps its registers)
+template <class Law, class T, bool Relaxed = false>
 __global__ void tetKernel(StepArrays<T> d, ElementParams<Law, T> p) {
     const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nTets) tetForces(d, p, e);
+    if (e < d.nTets) tetForces<Relaxed>(d, p, e);
 }
 
-template <class Law, class T>
+template <class Law, class T, bool Relaxed = false>
 __global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
     const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nHexes) hexForces(d, p, e);
+    if (e < d.nHexes) hexForces<Relaxed>(d, p, e);
 }
 
 template <class T>
@@ -170,6 +171,11 @@ public:
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
         m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+        m_p.prony = pronyParams<T>(s);
+        if (m_p.prony.series > 0) {
+            m_tetKernel = tetKernel<Law, T, true>;
+            m_hexKernel = hexKernel<Law, T, true>;
+        }
     }
     ~CudaRunner() override {
         cudaStreamSynchronize(m_stream);
@@ -199,14 +205,29 @@ public:
         du.assign(m_stage.get(), m_stage.get() + n);
     }
     void setIncrements(const std::vector<double>& du) override { m_du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
+    void getPronyStates(std::vector<double>& Y) override {
+        const size_t n = m_Y.size(), h = m_hY.size();
+        m_stage.allocate(n + h);
+        download(m_Y.get(), m_stage.get(), n);
+        download(m_hY.get(), m_stage.get() + n, h);
+        wait();
+        Y.assign(m_stage.get(), m_stage.get() + n + h);
+    }
+    void setPronyStates(const std::vector<double>& Y) override {
+        const size_t n = m_Y.size();
+        const std::vector<T> y(Y.begin(), Y.end());
+        m_Y.upload(y.data(), n, m_stream);
+        m_hY.upload(y.data() + n, y.size() - n, m_stream);
+    }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
     void elementPass() override {
         m_timer.run(0, m_stream, [&] {
             if (m_d.nTets > 0) {
-                tetKernel<Law, T><<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
+                m_tetKernel<<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
                 check(cudaGetLastError(), "the tetrahedron kernel launch");
             }
             if (m_d.nHexes > 0) {
-                hexKernel<Law, T><<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
+                m_hexKernel<<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
                 check(cudaGetLastError(), "the hexahedron kernel launch");
             }
         });
@@ -269,6 +290,8 @@ private:
         m_hvol.upload(h.hvol, s);
         m_hgK.upload(h.hgK, s);
         m_hef.upload(h.hef, s);
+        m_Y.upload(h.Y, s);
+        m_hY.upload(h.hY, s);
         m_ext.upload(h.ext, s);
         m_mass.upload(h.mass, s);
         m_invMass.upload(h.invMass, s);
@@ -293,6 +316,8 @@ private:
         m_d.hvol = m_hvol.get();
         m_d.hgK = m_hgK.get();
         m_d.hef = m_hef.get();
+        m_d.Y = m_Y.get();
+        m_d.hY = m_hY.get();
         m_d.slotStart = m_slotStart.get();
         m_d.slots = m_slots.get();
         m_d.ext = m_ext.get();
@@ -311,7 +336,7 @@ private:
     cudaStream_t m_stream = nullptr;
     DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<std::uint32_t> m_hold;
     DeviceArray<unsigned long long> m_bad;
     PinnedArray<T> m_stage, m_targets[2];
@@ -321,6 +346,8 @@ private:
     PassTimer m_timer;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
+    using ElementKernel = void (*)(StepArrays<T>, ElementParams<Law, T>);
+    ElementKernel m_tetKernel = tetKernel<Law, T>, m_hexKernel = hexKernel<Law, T>;  ///< the relaxed ones with Prony series
 };
 
 } // namespace

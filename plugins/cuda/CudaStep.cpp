@@ -54,6 +54,17 @@ void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
     // a program may have written the state it read (or set before the first step): the device
     // takes what is there
     if (b.onHost && (g.state->x() != b.xSeen || g.state->v() != b.vSeen)) upload(b, g);
+    if (!b.setup.series.empty()) {
+        // the device evaluates the forces once a step, at its start: the history advances every step,
+        // with the coefficients TLEDForceField's beginForces takes (viscoelastic/HistoryClock.h)
+        b.clock.beginEvaluation(t, dt);
+        pronyCoefficients(b.setup, b.clock.elapsed(), dt, b.nextA, b.nextB);
+        if (b.nextA != b.A || b.nextB != b.B) {
+            b.A = b.nextA;
+            b.B = b.nextB;
+            b.runner->setRelaxation(b.A, b.B);
+        }
+    }
     b.runner->elementPass();
     NodeParams<double> p = nodeParams(g, b.setup, t, dt, b.kick.next(dt));
     p.step = static_cast<unsigned long long>(g.stepIndex);
@@ -101,6 +112,7 @@ void CudaStep::push(core::MechanicalGroup& g) {
     if (b.restored) {
         b.restored = false;
         b.runner->setState(b.u, b.v);
+        b.runner->setPronyStates(b.Y);
         b.xSeen = g.state->x();
         b.vSeen = g.state->v();
         b.onHost = true;
@@ -149,6 +161,12 @@ void CudaStep::saveState(core::StateWriter& out) const {
         std::vector<double> du;
         b.runner->getIncrements(du);
         out.put("increments", du);
+        std::vector<double> Y;
+        b.runner->getPronyStates(Y);
+        out.put("prony", Y);
+        b.clock.save(out);
+        out.put("pronyA", b.A);
+        out.put("pronyB", b.B);
     }
 }
 
@@ -168,6 +186,11 @@ void CudaStep::restoreState(core::StateReader& in) {
         in.getInto("u", b.u.data(), b.u.size());
         in.getInto("v", b.v.data(), b.v.size());
         in.getInto("increments", b.du.data(), b.du.size());
+        b.Y = in.getDoubles("prony");
+        b.clock.restore(in);
+        b.A = in.getDoubles("pronyA");
+        b.B = in.getDoubles("pronyB");
+        if (!b.A.empty()) b.runner->setRelaxation(b.A, b.B);
         b.restored = true;  // (uploaded by push, after every component read its records)
     }
 }

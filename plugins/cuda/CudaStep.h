@@ -1,7 +1,8 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
 /// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernels on
-/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h), then a node kernel that sums each
+/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h, relaxed by its ViscoelasticProny
+/// series as TLEDForceField relaxes it, the states on the device), then a node kernel that sums each
 /// node's element forces in a fixed order, adds ConstantForce and gravity, integrates with
 /// SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the axes of FixedConstraint and
 /// PrescribedDisplacement where they hold them, in float or double. A component it cannot run is
@@ -11,10 +12,13 @@
 /// come back only when something reads them (core::BaseStepBackend::fetch: observers that record
 /// the step, Simulation::state, checkpoints). What a program writes into x and v after such a read
 /// is taken up by the next step. The device keeps the first step that left a state that is not
-/// finite; the host reads it every checkEvery steps and at every fetch.
+/// finite; the host reads it every checkEvery steps and at every fetch. The Prony history advances
+/// once a step, over the time the host's HistoryClock gives (the coefficients of dt, as
+/// TLEDForceField's forces at the start of each step).
 #include "StepRunner.h"
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <memory>
 #include <vector>
@@ -28,7 +32,8 @@ public:
     void fetch(core::MechanicalGroup& group) override;
     void push(core::MechanicalGroup& group) override;
     /// The device's state per body: u and v as the device holds them (x - X in double would not give
-    /// u back bitwise), SemiImplicitEuler's kick, CentralDifference's restart rule and increments.
+    /// u back bitwise), SemiImplicitEuler's kick, CentralDifference's restart rule and increments,
+    /// the Prony states, clock and coefficients.
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
     void wait() override;
@@ -55,6 +60,10 @@ private:
         CentralRule central;
         std::vector<double> tu, tv;  ///< the targets of the step (motionTargets)
         std::vector<double> u, v, du;  ///< the device's state when the host holds it, and the increments
+        std::vector<double> Y;          ///< the Prony states read from a checkpoint (push uploads them)
+        viscoelastic::HistoryClock clock;  ///< when the Prony history advances, over what time (as TLEDForceField)
+        std::vector<double> A, B;          ///< the Prony coefficients the runner holds
+        std::vector<double> nextA, nextB;  ///< those of the step
         bool restored = false;          ///< u, v and du come from a checkpoint: push uploads them as they are
         Precision precision = Precision::Double;
         /// the host's x and v hold the state (after an upload or a fetch, until the next step): a

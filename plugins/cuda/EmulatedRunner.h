@@ -15,6 +15,7 @@ public:
         m_p.J0 = static_cast<T>(s.J0);
         m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
         m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
+        m_p.prony = pronyParams<T>(s);
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
@@ -25,15 +26,30 @@ public:
         u.assign(m_dev.u.begin(), m_dev.u.end());
         v.assign(m_dev.v.begin(), m_dev.v.end());
     }
+    void getPronyStates(std::vector<double>& Y) override {
+        Y.assign(m_dev.Y.begin(), m_dev.Y.end());
+        Y.insert(Y.end(), m_dev.hY.begin(), m_dev.hY.end());
+    }
+    void setPronyStates(const std::vector<double>& Y) override {
+        const size_t n = m_dev.Y.size();
+        m_dev.Y.assign(Y.begin(), Y.begin() + static_cast<std::ptrdiff_t>(n));
+        m_dev.hY.assign(Y.begin() + static_cast<std::ptrdiff_t>(n), Y.end());
+    }
     void getIncrements(std::vector<double>& du) override { du.assign(m_dev.du.begin(), m_dev.du.end()); }
     void setIncrements(const std::vector<double>& du) override { m_dev.du.assign(du.begin(), du.end()); }
     long firstBadStep() override { return m_dev.bad == ~0ull ? -1 : static_cast<long>(m_dev.bad); }
     void wait() override {}
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
+        if (m_p.prony.series > 0) {
+            for (int e = 0; e < d.nTets; ++e) tetForces<true>(d, m_p, e);
+            for (int e = 0; e < d.nHexes; ++e) hexForces<true>(d, m_p, e);
+            return;
+        }
         for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
         for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
     }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
         m_dev.tu.assign(tu.begin(), tu.end());
         m_dev.tv.assign(tv.begin(), tv.end());

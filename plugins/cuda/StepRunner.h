@@ -21,9 +21,17 @@ public:
     /// CentralDifference's increments u(n) - u(n-1) (StepArrays::du), 3 per node: down and up.
     virtual void getIncrements(std::vector<double>& du) = 0;
     virtual void setIncrements(const std::vector<double>& du) = 0;
+    /// The Prony states (StepArrays Y, then hY), as doubles: down and up (checkpoints).
+    virtual void getPronyStates(std::vector<double>& Y) = 0;
+    virtual void setPronyStates(const std::vector<double>& Y) = 0;
     /// The element kernels over every tetrahedron and every hexahedron (launched; the GPU runs them
-    /// in order with the rest, and the host does not wait).
+    /// in order with the rest, and the host does not wait; each advances its Prony states,
+    /// StepArrays Y, once).
     virtual void elementPass() = 0;
+    /// The coefficients A_i, B_i of the Prony series for the next element passes (TLED eq. (30)),
+    /// term by term, the series in order (pronyCoefficients); until the first call the series relax
+    /// nothing (A = B = 0). Set when they change (CudaStep: the first step, a change of dt).
+    virtual void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) = 0;
     /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets), asynchronously.
     virtual void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) = 0;
     /// The node kernel of the setup's integrator over every node (after an element pass).

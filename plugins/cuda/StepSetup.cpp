@@ -3,7 +3,9 @@
 #include "DeviceLaws.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
+#include "fascia/materials/RelaxationSplit.h"
 #include "fascia/scene/Node.h"
+#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +35,37 @@ void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
     if (const auto* h = paramOf<core::Param<bool>>(integ, "halfStepStart")) s.halfStepStart = h->get();
 }
 
+/// The Prony series beside the TLED force field, as TLEDForceField takes them (TLEDForceField.cpp
+/// init): every ViscoelasticProny of its node in order, each part relaxed by one series at most,
+/// the parts a series relaxes stress-free at rest (materials/RelaxationSplit.h, a located error at
+/// the series' apply otherwise), s ln J moved between the parts when a series relaxes one alone.
+void readSeries(const core::BaseForceField& ff, StepSetup& s) {
+    if (!ff.node()) return;
+    for (const core::Component* c : ff.node()->findAllLocal<core::Component>()) {
+        if (c->className() != "ViscoelasticProny") continue;
+        const auto* p = dynamic_cast<const viscoelastic::ViscoelasticProny*>(c);
+        if (!p) unsupported(*c, "this ViscoelasticProny (not the class the device step knows)");
+        StepSetup::Series x{p, p->relaxesIsochoric(), p->relaxesVolumetric(), static_cast<int>(p->termCount())};
+        for (const StepSetup::Series& y : s.series)
+            if ((x.iso && y.iso) || (x.vol && y.vol)) unsupported(*c, "a second ViscoelasticProny relaxing the same part of the stress");
+        if (x.terms > kMaxTerms)
+            unsupported(*c, "a Prony series of " + std::to_string(x.terms) + " terms (the device step runs at most " +
+                                std::to_string(kMaxTerms) + " per series)");
+        if (s.series.size() == size_t(kMaxSeries))
+            unsupported(*c, "a third ViscoelasticProny (the device step runs at most " + std::to_string(kMaxSeries) + " series)");
+        s.series.push_back(x);
+    }
+    if (s.series.empty()) return;
+    const materials::RelaxationSplit split = materials::relaxationSplit(*s.material, s.J0);
+    bool onePartAlone = false;
+    for (const StepSetup::Series& x : s.series) {
+        const std::string err = materials::relaxationRestError(split, x.iso, x.vol, s.material->className() + " '" + s.material->name() + "'");
+        if (!err.empty()) x.prony->failApply(err);
+        onePartAlone |= x.iso != x.vol;
+    }
+    s.restShift = onePartAlone ? split.shift : 0.0;
+}
+
 /// The material and the options of the TLED force field, each checked against what the device
 /// step runs.
 void readTLED(const core::BaseForceField& ff, StepSetup& s) {
@@ -56,10 +89,7 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
             const Vec3 n = d->normalized();
             (w == 0 ? s.a0 : s.b0) = elements::Vec33<double>{n[0], n[1], n[2]};
         }
-    // a viscous model beside the force field relaxes its stress: not on the device yet
-    if (ff.node())
-        for (const core::Component* c : ff.node()->findAllLocal<core::Component>())
-            if (c->className() == "ViscoelasticProny") unsupported(*c, "ViscoelasticProny");
+    readSeries(ff, s);
 }
 
 /// Rest geometry of the tetrahedra: dN_a/dX for a = 1..3 (rows of Dm^-1) and the volumes.
@@ -175,6 +205,9 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     // (the slots hold 8 e + a in 32 bits; every array index stays below 2^31)
     if (nNodes >= (size_t(1) << 29) || tets.size() + hexes.size() >= (size_t(1) << 26))
         owner.fail("the mesh is too large for the device step's 32-bit indices");
+    if (6 * static_cast<size_t>(s.pronyTerms()) * std::max(tets.size(), hexes.size()) >= (size_t(1) << 31))
+        owner.fail("the mesh is too large for the device step's 32-bit indices of its " + std::to_string(s.pronyTerms()) +
+                   " Prony terms' states (6 per term and element)");
     for (size_t i = 0; i < nNodes; ++i)
         for (int c = 0; c < 3; ++c) s.ext[3 * i + static_cast<size_t>(c)] = ext[i][c];
     s.nNodes = static_cast<int>(nNodes);
@@ -214,6 +247,17 @@ void motionTargets(core::MechanicalGroup& g, const StepSetup& s, double tEnd, st
         const int i = s.targetAt[j] % 3;
         tu[j] = x[n][i] - X[n][i];
         tv[j] = v[n][i];
+    }
+}
+
+void pronyCoefficients(const StepSetup& s, double elapsed, double dt, std::vector<double>& A, std::vector<double>& B) {
+    A.clear();
+    B.clear();
+    std::vector<double> a, b;
+    for (const StepSetup::Series& x : s.series) {
+        viscoelastic::stepCoefficients(*x.prony, elapsed, dt, a, b);
+        A.insert(A.end(), a.begin(), a.end());
+        B.insert(B.end(), b.begin(), b.end());
     }
 }
 

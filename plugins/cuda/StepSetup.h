@@ -1,13 +1,18 @@
 #pragma once
 /// Host-side setup of the device step, shared by the GPU path and its CPU emulation: what a
 /// mechanical group holds, checked against what the device step can run, turned into the arrays
-/// of StepLayout.h (once, at init), and the per-step parameters.
+/// of StepLayout.h (once, at init), and the per-step parameters (the node kernel's, the Prony
+/// series' coefficients).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <cstdint>
 #include <vector>
+
+namespace fascia::viscoelastic {
+class ViscoelasticProny;
+}
 
 namespace fascia::cuda {
 
@@ -30,12 +35,27 @@ struct StepSetup {
     enum class Scheme { SemiImplicitEuler, CentralDifference } scheme = Scheme::SemiImplicitEuler;
     double damping = 0;                                ///< the integrator's alpha
     bool halfStepStart = true;                         ///< SemiImplicitEuler's leapfrog start
+    /// A Prony series beside the TLEDForceField (TLED eq. (24), (30)): the parts it relaxes and its
+    /// number of terms (its coefficients: pronyCoefficients, each step).
+    struct Series {
+        const viscoelastic::ViscoelasticProny* prony = nullptr;
+        bool iso = false, vol = false;
+        int terms = 0;
+    };
+    std::vector<Series> series;  ///< in the order TLEDForceField takes them (its node's order)
+    double restShift = 0;        ///< PronyParams::restShift
+    /// the terms of all series (the states' k, StepArrays Y)
+    int pronyTerms() const {
+        int n = 0;
+        for (const Series& x : series) n += x.terms;
+        return n;
+    }
 };
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
-/// tetrahedra and hexahedra with one built-in law of DeviceLaws.h, FixedConstraint,
-/// PrescribedDisplacement, ConstantForce without a curve, the masses, SemiImplicitEuler or
-/// CentralDifference) and builds its arrays. Anything else is a located error at
+/// tetrahedra and hexahedra with one built-in law of DeviceLaws.h and the ViscoelasticProny series
+/// of its node, FixedConstraint, PrescribedDisplacement, ConstantForce without a curve, the masses,
+/// SemiImplicitEuler or CentralDifference) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
 /// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g);
@@ -50,7 +70,7 @@ struct StepArraysHost {
     int nTets = 0, nHexes = 0, nNodes = 0;
     std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
-    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, ext, mass, invMass, u, v, tu, tv, du;
+    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, mass, invMass, u, v, tu, tv, du;
     std::vector<std::uint32_t> hold;
     unsigned long long bad = ~0ull;
 
@@ -70,6 +90,8 @@ struct StepArraysHost {
         d.hvol = hvol.data();
         d.hgK = hgK.data();
         d.hef = hef.data();
+        d.Y = Y.data();
+        d.hY = hY.data();
         d.slotStart = slotStart.data();
         d.slots = slots.data();
         d.ext = ext.data();
@@ -86,7 +108,7 @@ struct StepArraysHost {
     }
 };
 
-/// The arrays of s converted to T, with u, v, the targets and du zero.
+/// The arrays of s converted to T, with u, v, the targets, du and the Prony states zero.
 template <class T>
 StepArraysHost<T> toArrays(const StepSetup& s) {
     const auto conv = [](const std::vector<double>& a) { return std::vector<T>(a.begin(), a.end()); };
@@ -106,6 +128,8 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.hvol = conv(s.hvol);
     h.hgK = conv(s.hgK);
     h.hef.assign(24 * static_cast<size_t>(s.nHexes), T(0));
+    h.Y.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nTets), T(0));
+    h.hY.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nHexes), T(0));
     h.ext = conv(s.ext);
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);
@@ -169,6 +193,35 @@ NodeParams<T> nodeParamsIn(const NodeParams<double>& p) {
     q.twoSteps = p.twoSteps;
     q.step = p.step;
     return q;
+}
+
+/// A_i and B_i of s's series (TLED eq. (30)) for a history step of `elapsed` s at the scene's time
+/// step dt (viscoelastic/HistoryClock.h stepCoefficients), term by term, the series in order.
+void pronyCoefficients(const StepSetup& s, double elapsed, double dt, std::vector<double>& A, std::vector<double>& B);
+
+/// The element kernels' Prony series of s in T, with no relaxation yet (A = B = 0: setCoefficients).
+template <class T>
+PronyParams<T> pronyParams(const StepSetup& s) {
+    PronyParams<T> q;
+    q.series = static_cast<int>(s.series.size());
+    for (size_t i = 0; i < s.series.size(); ++i) {
+        q.terms[i] = s.series[i].terms;
+        q.iso[i] = s.series[i].iso;
+        q.vol[i] = s.series[i].vol;
+    }
+    q.restShift = static_cast<T>(s.restShift);
+    return q;
+}
+
+/// Sets q's coefficients from A and B as pronyCoefficients gives them (term by term, the series in order).
+template <class T>
+void setCoefficients(PronyParams<T>& q, const std::vector<double>& A, const std::vector<double>& B) {
+    size_t k = 0;
+    for (int i = 0; i < q.series; ++i)
+        for (int t = 0; t < q.terms[i]; ++t, ++k) {
+            q.A[i][t] = static_cast<T>(A.at(k));
+            q.B[i][t] = static_cast<T>(B.at(k));
+        }
 }
 
 /// The targets at the end tEnd = t + dt of a step (StepArrays tu, tv): the group's constraints

@@ -133,7 +133,9 @@ FASCIA_INLINE void elasticStress(Batch<NN, T>& s, int n, const Fibres<T>& fib) {
 
 /// Moves s ln J from the isochoric to the volumetric part of the response (dJiso -= s/J, dJvol +=
 /// s/J, their sum unchanged), so that each part a series relaxes is stress-free at rest
-/// (materials/RelaxationSplit.h). max(J0, J) keeps unused lanes finite.
+/// (materials/RelaxationSplit.h). max(J0, J) keeps unused lanes finite. (The formula of
+/// fascia/elements/Relaxation.h restShift, and below A R + B Y its pronyState, written inline here:
+/// see there why.)
 template <int NN, class T>
 FASCIA_INLINE void restSplit(Batch<NN, T>& s, int n, double shift, double J0) {
     const T sh = static_cast<T>(shift), j0 = static_cast<T>(J0);

@@ -197,6 +197,17 @@ inline const std::string kLift =
     "<PrescribedDisplacement name=\"lift\" indices=\"12 30 31\" directions=\"0 1 1\" displacement=\"0 0.001 0.002\" "
     "shape=\"smooth\" rampTime=\"0.01\"/>";
 
+/// A Prony series of two terms that relax noticeably within a run of 1000 steps of 2e-5 s (a body
+/// element of scene()), relaxing the given part ("isochoric", "volumetric" or "both").
+inline std::string prony(const std::string& apply = "isochoric") {
+    return "<ViscoelasticProny name=\"visco\" alpha=\"0.5 0.2\" tau=\"0.01 0.002\" apply=\"" + apply + "\"/>";
+}
+
+/// Two series, one per part, of two and one terms (the states of both in one array).
+inline const std::string kTwoSeries =
+    "<ViscoelasticProny name=\"shear\" alpha=\"0.4 0.2\" tau=\"0.01 0.002\" apply=\"isochoric\"/>"
+    "<ViscoelasticProny name=\"bulk\" alpha=\"0.3\" tau=\"0.004\" apply=\"volumetric\"/>";
+
 /// The ends of a trajectory of the scene on the CPU and with `root` (a CudaStep), and their
 /// difference relative to the CPU's largest displacement.
 struct Pair {

@@ -78,6 +78,47 @@ TEST_CASE("CudaStep on the GPU follows CentralDifference and PrescribedDisplacem
     CHECK(r.err <= (precision == "float" ? 1e-4 : damped ? 5e-9 : central ? 1e-10 : 1e-11));
 }
 
+TEST_CASE("CudaStep on the GPU follows TLEDForceField with a Prony series over 1000 steps", "[CudaStep][ViscoelasticProny]") {
+    requireDevice();
+    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference/>",
+                                            "<CentralDifference damping=\"5\"/>");
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(integrator, meshName(mesh), precision);
+    const Pair r = runBoth(deviceLaw("TransverselyIsotropic"), prony(), integrator, mesh, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    const bool damped = integrator == "<CentralDifference damping=\"5\"/>", central = integrator.find("Central") != std::string::npos;
+    CHECK(r.err <= (precision == "float" ? 1e-4 : damped ? 5e-9 : central ? 1e-10 : 1e-11));
+    CHECK(r.moved > 1e-4);
+}
+
+TEST_CASE("CudaStep on the GPU relaxes either part, or both, of every law as TLEDForceField does", "[CudaStep][ViscoelasticProny]") {
+    requireDevice();
+    const Law law = GENERATE(from_range(deviceLaws()));
+    const std::string apply = GENERATE(as<std::string>{}, "isochoric", "volumetric", "both");
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(law.name, apply, precision);
+    // (the parts the CPU refuses: test_cuda_emulation; 500 steps: see there)
+    try {
+        core::Simulation::fromString(scene(law, "", prony(apply)));
+    } catch (const core::Error&) {
+        return;
+    }
+    const Pair r = runBoth(law, prony(apply), "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, "<CudaStep precision=\"" + precision + "\"/>", 500);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "float" ? 1e-4 : 1e-11));
+}
+
+TEST_CASE("CudaStep on the GPU runs a series per part, of different lengths, as TLEDForceField does", "[CudaStep][ViscoelasticProny]") {
+    requireDevice();
+    const Law law = GENERATE(deviceLaw("CompressibleNeoHookean"), deviceLaw("HolzapfelGasserOgden"));
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(law.name, precision);
+    const Pair r = runBoth(law, kTwoSeries, "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    CAPTURE(sci(r.err));
+    CHECK(r.err <= (precision == "float" ? 1e-4 : 1e-11));
+}
+
 TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory for any block size", "[CudaStep]") {
     requireDevice();
     const Law law = deviceLaw("TransverselyIsotropic");
@@ -101,9 +142,10 @@ TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "
     const Law law = GENERATE(from_range(deviceLaws()));
     const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
     const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
-    CAPTURE(law.name, meshName(mesh), integrator);
+    const bool visco = GENERATE(false, true);
+    CAPTURE(law.name, meshName(mesh), integrator, visco);
     const auto end = [&](const std::string& root) {
-        auto sim = core::Simulation::fromString(scene(law, root, kLift, integrator, mesh));
+        auto sim = core::Simulation::fromString(scene(law, root, kLift + (visco ? prony() : ""), integrator, mesh));
         for (int s = 0; s < 300; ++s) sim->step();
         return sim->state("mo").x();
     };

@@ -2,12 +2,16 @@
 /// The bodies of the device step's two kernels, as host/device functions (FASCIA_HD) over the
 /// layout of StepLayout.h: the GPU wraps each in a __global__ launch (CudaRunner.cu, one thread per
 /// element or node), the CPU emulation calls them in loops (EmulatedRunner.h). The element math is
-/// the element layer's and the laws' (Tensor3.h, BatchView.h, materials::evaluateLaw): nothing of
-/// it is written again here (docs/design.md, principle 9).
+/// the element layer's and the laws' (Tensor3.h, BatchView.h, Relaxation.h, materials::evaluateLaw):
+/// nothing of it is written again here (docs/design.md, principle 9).
 ///   element kernels (tetrahedra, hexahedra): gather u of its 4 or 8 nodes -> F from dN/dX (TLED
 ///     eq. (1)) -> invariants -> the law's response (evaluateLaw: HEML section 4.4 below J0) -> P
 ///     (Tensor3.h firstPiola) -> f_a = -V P dN_a/dX (TLED eq. (3)), for hexahedra with the
-///     hourglass forces of fascia/elements/Hourglass.h, written to the element's own slots;
+///     hourglass forces of fascia/elements/Hourglass.h, written to the element's own slots; with
+///     Prony series (ElementParams::prony; the kernels' Relaxed, a compile-time choice), between the
+///     response and P: the rest shift -> S split into its isochoric and volumetric parts (TLED eq.
+///     (10), secondPiola) -> Y_i = A_i R + B_i Y_i (TLED eq. (30), the element's own states
+///     advanced in place), S = Phi - sum_i Y_i (TLED eq. (24)) -> P = F S;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
 ///     + m g, held axes zeroed, then SemiImplicitEuler (v += kick (f/m - alpha v), u += dt v, HEML
 ///     eq. (32)) or CentralDifference, the held axes at their constraint's position and velocity
@@ -15,6 +19,7 @@
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/elements/BatchView.h"
 #include "fascia/elements/Hourglass.h"
+#include "fascia/elements/Relaxation.h"
 #include "fascia/materials/Material.h"
 
 namespace fascia::cuda {
@@ -30,31 +35,91 @@ FASCIA_HD FASCIA_INLINE void gatherCorners(const int* nodes, int n, int e, const
     }
 }
 
-/// V P of an element of rest volume V at the deformation gradient F: the invariants, the law's
-/// response (materials::evaluateLaw: HEML section 4.4 below J0) and P (Tensor3.h firstPiola).
+/// The invariants the law uses (BaseMaterial::Uses bits, compile-time).
+template <class Law>
+struct Uses {
+    static constexpr bool i2 = (Law::uses & materials::BaseMaterial::UsesI2) != 0, i4 = (Law::uses & materials::BaseMaterial::UsesI4) != 0,
+                          i6 = (Law::uses & materials::BaseMaterial::UsesI6) != 0;
+};
+
+/// The invariants of F (in) and the law's response to them (materials::evaluateLaw: HEML section
+/// 4.4 below J0) as the stress formulas read it.
 template <class Law, class T>
-FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V) {
-    using materials::BaseMaterial;
-    constexpr bool i2 = (Law::uses & BaseMaterial::UsesI2) != 0, i4 = (Law::uses & BaseMaterial::UsesI4) != 0,
-                   i6 = (Law::uses & BaseMaterial::UsesI6) != 0;
-    const elements::Invariants3<T> iv = elements::invariants<i2>(F);
-    materials::InvariantsT<T> in;
+FASCIA_HD FASCIA_INLINE elements::Coefficients<T> response(const ElementParams<Law, T>& p, const elements::Mat33<T>& F,
+                                                           materials::InvariantsT<T>& in) {
+    const elements::Invariants3<T> iv = elements::invariants<Uses<Law>::i2>(F);
     in.I1 = iv.I1;
     in.I2 = iv.I2;
     in.J = iv.J;
-    if constexpr (i4) in.I4 = elements::fibreInvariant(F, p.a0);
-    if constexpr (i6) in.I6 = elements::fibreInvariant(F, p.b0);
+    if constexpr (Uses<Law>::i4) in.I4 = elements::fibreInvariant(F, p.a0);
+    if constexpr (Uses<Law>::i6) in.I6 = elements::fibreInvariant(F, p.b0);
     materials::ResponseT<T> r;
     materials::evaluateLaw(p.law, in, static_cast<double>(p.J0), r);
-    const elements::Coefficients<T> c{r.dI1, r.dI2, r.dI4, r.dI6, r.dJiso, r.dJvol};
-    const elements::Mat33<T> P0 = elements::firstPiola<i2, i4, i6>(F, in.I1, c, p.a0, p.b0);
-    return {V * P0.xx, V * P0.xy, V * P0.xz, V * P0.yx, V * P0.yy, V * P0.yz, V * P0.zx, V * P0.zy, V * P0.zz};
+    return {r.dI1, r.dI2, r.dI4, r.dI6, r.dJiso, r.dJvol};
+}
+
+/// V P.
+template <class T>
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaled(const elements::Mat33<T>& P, T V) {
+    return {V * P.xx, V * P.xy, V * P.xz, V * P.yx, V * P.yy, V * P.yz, V * P.zx, V * P.zy, V * P.zz};
+}
+
+/// V P of an element of rest volume V at the deformation gradient F: the law's response and P
+/// (Tensor3.h firstPiola).
+template <class Law, class T>
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V) {
+    materials::InvariantsT<T> in;
+    const elements::Coefficients<T> c = response(p, F, in);
+    return scaled(elements::firstPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, c, p.a0, p.b0), V);
+}
+
+/// V P relaxed by the Prony series of p.prony (TLED eq. (24), (30)), as TLEDForceField's viscous
+/// path (plugins/tled/TLEDKernel.h viscousStress): the law's response, s ln J moved between its parts
+/// (Relaxation.h restShift), S = Siso + Svol (Tensor3.h secondPiola), then for each series, term and
+/// component Y = A R + B Y (Relaxation.h pronyState, R the part the series relaxes) and S -= Y, in
+/// that order; P = F S (firstPiolaOf). Y: the states of the element kind (n elements), element e's
+/// term k component c at Y[(6 k + c) n + e] (StepLayout.h), advanced in place.
+template <class Law, class T>
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledRelaxedStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V, T* Y,
+                                                               int n, int e) {
+    materials::InvariantsT<T> in;
+    elements::Coefficients<T> c = response(p, F, in);
+    const PronyParams<T>& q = p.prony;
+    if (q.restShift != T(0)) elements::restShift(c.dJiso, c.dJvol, in.J, q.restShift, p.J0);
+    elements::Sym33<T> Si, Sv;
+    elements::secondPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, in.J, c, p.a0, p.b0, Si, Sv);
+    const T si[6] = {Si.xx, Si.yy, Si.zz, Si.xy, Si.yz, Si.xz}, sv[6] = {Sv.xx, Sv.yy, Sv.zz, Sv.xy, Sv.yz, Sv.xz};
+    T S[6];
+    for (int i = 0; i < 6; ++i) S[i] = si[i] + sv[i];
+    // (bounds known at compile time, exits uniform across the elements: the loops unroll)
+    int k = 0;
+    for (int s = 0; s < kMaxSeries && s < q.series; ++s)
+        for (int t = 0; t < kMaxTerms && t < q.terms[s]; ++t, ++k)
+            for (int i = 0; i < 6; ++i) {
+                const T R = q.iso[s] && q.vol[s] ? si[i] + sv[i] : q.iso[s] ? si[i] : sv[i];
+                T& y = Y[(6 * k + i) * n + e];
+                y = elements::pronyState(q.A[s][t], R, q.B[s][t], y);
+                S[i] -= y;
+            }
+    return scaled(elements::firstPiolaOf(F, elements::Sym33<T>{S[0], S[1], S[2], S[3], S[4], S[5]}), V);
+}
+
+/// V P of the element, relaxed by p.prony's series (Relaxed) or elastic (a compile-time choice: the
+/// elastic kernels carry none of the viscous path's registers). Y, n, e: element e's states among
+/// the n of its kind.
+template <bool Relaxed, class Law, class T>
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> elementStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V, T* Y, int n,
+                                                         int e) {
+    if constexpr (Relaxed) return scaledRelaxedStress(p, F, V, Y, n, e);
+    else return scaledStress(p, F, V);
 }
 
 } // namespace detail
 
-/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots).
-template <class Law, class T>
+/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots); Relaxed: with the
+/// Prony series of p (p.prony.series > 0), its states advanced (a runner launches the relaxed
+/// kernels when the setup has series, the elastic ones otherwise).
+template <bool Relaxed = false, class Law, class T>
 FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
     const int n = d.nTets;
     elements::NodalBatch<4, 1, T> u;
@@ -62,7 +127,7 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
     T g[9];
     for (int r = 0; r < 9; ++r) g[r] = d.dN[r * n + e];
     const elements::NodeRows<1, T> dN{g};
-    const elements::Mat33<T> P = detail::scaledStress(p, elements::deformationGradientTet(u, dN, 0), d.vol[e]);
+    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, elements::deformationGradientTet(u, dN, 0), d.vol[e], d.Y, n, e);
     T s0 = 0, s1 = 0, s2 = 0;
     T* out = d.ef + 12 * static_cast<size_t>(e);
     for (int a = 1; a < 4; ++a) {
@@ -80,8 +145,8 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
 }
 
 /// The forces of hexahedron e on its 8 corners (uniform strain with hourglass control,
-/// fascia/elements/Hourglass.h), written to hef (its own slots).
-template <class Law, class T>
+/// fascia/elements/Hourglass.h), written to hef (its own slots); Relaxed: as tetForces.
+template <bool Relaxed = false, class Law, class T>
 FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
     const int n = d.nHexes;
     elements::NodalBatch<8, 1, T> u;
@@ -96,7 +161,7 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
     const elements::NodeRows<1, T> dN{g}, cq{c};
     const elements::Mat33<T> F = elements::deformationGradient(u, dN, 0);
     elements::hourglassModes(u, cq, 0, F, h);
-    const elements::Mat33<T> P = detail::scaledStress(p, F, d.hvol[e]);
+    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, F, d.hvol[e], d.hY, n, e);
     elements::NodalBatch<8, 1, T> f;
     elements::hexNodalForces(P, d.hgK[e], elements::NodeRows<1, T>{h}, cq, dN, 0, f);
     T* out = d.hef + 24 * static_cast<size_t>(e);

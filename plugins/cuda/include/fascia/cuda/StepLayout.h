@@ -1,7 +1,7 @@
 #pragma once
 /// The data layout of the device step (docs/design.md, section 4.7): every array of the mesh as a
-/// plain pointer, structure of arrays over the whole mesh, so that consecutive threads (elements,
-/// nodes) read consecutive addresses. The GPU path (CudaRunner.cu) and the CPU emulation
+/// plain pointer, structure of arrays over the whole mesh (the Prony states too), so that
+/// consecutive threads (elements, nodes) read consecutive addresses. The GPU path (CudaRunner.cu) and the CPU emulation
 /// (EmulatedRunner.h) both fill it from the same host arrays (StepArraysHost, StepSetup.h) and run the
 /// same kernel bodies over it (StepKernels.h).
 #include "fascia/elements/Tensor3.h"
@@ -25,6 +25,13 @@ namespace fascia::cuda {
 ///   hgC[(3 q + i) nHexes + e]    hourglass vector c_q (q = 0..3)
 ///   hvol[e], hgK[e]              rest volume, hourglass stiffness K
 ///   hef[3 (8 e + a) + i]         the element's force on its corner a
+/// Prony series (ViscoelasticProny beside the TLEDForceField, TLED eq. (24), (30); PronyParams),
+/// term k counting the terms of every series in order (term t of series s at k = the terms of the
+/// series before s + t), stress component c (xx yy zz xy yz xz):
+///   Y[(6 k + c) nTets + e]       the state Y_k of tetrahedron e, updated in place by its element
+///                                kernel, once per element pass (zero at the start; empty without
+///                                a series)
+///   hY[(6 k + c) nHexes + e]     the same for hexahedron e
 /// Node n, component i:
 ///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
 ///                                tetrahedra, then the hexahedra (e - nTets), by element then
@@ -55,6 +62,8 @@ struct StepArrays {
     const T* hvol = nullptr;
     const T* hgK = nullptr;
     T* hef = nullptr;
+    T* Y = nullptr;
+    T* hY = nullptr;
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
@@ -69,13 +78,34 @@ struct StepArrays {
     unsigned long long* bad = nullptr;
 };
 
+/// The most Prony series (one per part of the response, or one for both) and terms per series the
+/// element kernels take (PronyParams); more is a located error at setup (StepSetup.cpp).
+constexpr int kMaxSeries = 2, kMaxTerms = 8;
+
+/// The Prony series of the element kernels (TLED eq. (24), (30)): series s relaxes the isochoric
+/// part of S (iso[s]), the volumetric part (vol[s]) or both, with terms[s] terms of coefficients
+/// A[s][t], B[s][t] (those of the step's time step, set every time they change; zero: no
+/// relaxation); restShift is the s of s ln J moved from the isochoric to the volumetric part of the
+/// response (materials/RelaxationSplit.h; 0 unless a series relaxes one part alone). series = 0:
+/// the elastic kernels, unchanged.
+template <class T>
+struct PronyParams {
+    int series = 0;
+    int terms[kMaxSeries] = {};
+    bool iso[kMaxSeries] = {}, vol[kMaxSeries] = {};
+    T A[kMaxSeries][kMaxTerms] = {}, B[kMaxSeries][kMaxTerms] = {};
+    T restShift = 0;
+};
+
 /// What the element kernel needs besides the arrays: the law (by value, its parameters as the
-/// material holds them), J0 and the fibre directions of the material (one per mesh).
+/// material holds them), J0, the fibre directions of the material (one per mesh) and its Prony
+/// series.
 template <class Law, class T>
 struct ElementParams {
     Law law;
     T J0;
     elements::Vec33<T> a0, b0;
+    PronyParams<T> prony;
 };
 
 /// The node kernel's step: g(t) (gravity, scaled by its curve), dt and the damping alpha; for

@@ -108,14 +108,24 @@ struct Coefficients {
     T dI1, dI2, dI4, dI6, dJiso, dJvol;
 };
 
+/// The floor of |J| in secondPiola: 1e-300 in double; 0 in float, where 1e-300 rounds to 0 (the
+/// value the float path has always had: a J of exactly 0 gives an infinite J^-1 there), written
+/// apart so that no constant is out of range for T (nvcc's error 221 in device code).
+template <class T>
+FASCIA_HD FASCIA_INLINE constexpr T jFloor() {
+    if constexpr (sizeof(T) >= sizeof(double)) return T(1e-300);
+    else return T(0);
+}
+
 /// S = Siso + Svol of TLED eq. (10): Siso = 2 [dI1 I + dI2 (I1 I - C) + dI4 A0 + dI6 B0] + J dJiso C^-1
-/// and Svol = J dJvol C^-1, with J C^-1 = cof(F)^T cof(F) / J (J floored at 1e-300 in magnitude).
+/// and Svol = J dJvol C^-1, with J C^-1 = cof(F)^T cof(F) / J (J floored at jFloor in magnitude).
 template <bool UseI2, bool UseI4, bool UseI6, class T>
 FASCIA_HD FASCIA_INLINE void secondPiola(const Mat33<T>& F, T I1, T J, const Coefficients<T>& r, Vec33<T> a,
                                          Vec33<T> b, Sym33<T>& Siso, Sym33<T>& Svol) {
     const Mat33<T> cf = cofactor(F);
     const T c1 = 2 * r.dI1;
-    const T iJ = T(1) / (std::abs(J) > T(1e-300) ? J : (J < 0 ? T(-1e-300) : T(1e-300)));
+    constexpr T tiny = jFloor<T>();
+    const T iJ = T(1) / (std::abs(J) > tiny ? J : (J < 0 ? -tiny : tiny));
     const Sym33<T> JCi{(cf.xx * cf.xx + cf.yx * cf.yx + cf.zx * cf.zx) * iJ, (cf.xy * cf.xy + cf.yy * cf.yy + cf.zy * cf.zy) * iJ,
                        (cf.xz * cf.xz + cf.yz * cf.yz + cf.zz * cf.zz) * iJ, (cf.xx * cf.xy + cf.yx * cf.yy + cf.zx * cf.zy) * iJ,
                        (cf.xy * cf.xz + cf.yy * cf.yz + cf.zy * cf.zz) * iJ, (cf.xx * cf.xz + cf.yx * cf.yz + cf.zx * cf.zz) * iJ};
