@@ -7,6 +7,7 @@
 #include "DeviceLaws.h"
 #include "StepRunner.h"
 
+#include "fascia/base/Error.h"
 #include "fascia/sim/Simulation.h"
 
 #include <catch2/catch.hpp>
@@ -196,6 +197,18 @@ inline double displacementError(const Positions& x, const Positions& y, const Po
 inline const std::string kLift =
     "<PrescribedDisplacement name=\"lift\" indices=\"12 30 31\" directions=\"0 1 1\" displacement=\"0 0.001 0.002\" "
     "shape=\"smooth\" rampTime=\"0.01\"/>";
+
+/// The Input error of initialising a scene (empty when it initialises).
+inline std::string initError(const std::string& xml) {
+    try {
+        auto sim = core::Simulation::fromString(xml);
+        sim->init();
+    } catch (const core::Error& e) {
+        CHECK(e.kind() == core::ErrorKind::Input);
+        return e.what();
+    }
+    return {};
+}
 
 /// A Prony series of two terms that relax noticeably within a run of 1000 steps of 2e-5 s (a body
 /// element of scene()), relaxing the given part ("isochoric", "volumetric" or "both").

@@ -159,22 +159,6 @@ TEST_CASE("CudaStep emulated keeps the held axes at rest and starts the leapfrog
     }
 }
 
-namespace {
-
-/// The Input error of initialising a scene (empty when it initialises).
-std::string initError(const std::string& xml) {
-    try {
-        auto sim = core::Simulation::fromString(xml);
-        sim->init();
-    } catch (const core::Error& e) {
-        CHECK(e.kind() == core::ErrorKind::Input);
-        return e.what();
-    }
-    return {};
-}
-
-} // namespace
-
 TEST_CASE("A component the device step cannot run is a located error naming it", "[CudaStep]") {
     const Law law = deviceLaw("NeoHookean");
     const std::string emu = "<CudaStep emulate=\"true\"/>";
