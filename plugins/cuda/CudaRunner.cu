@@ -176,6 +176,8 @@ public:
             m_tetKernel = tetKernel<Law, T, true>;
             m_hexKernel = hexKernel<Law, T, true>;
         }
+        m_tetBlock = fitBlock(m_tetKernel);
+        m_hexBlock = fitBlock(m_hexKernel);
     }
     ~CudaRunner() override {
         cudaStreamSynchronize(m_stream);
@@ -223,11 +225,11 @@ public:
     void elementPass() override {
         m_timer.run(0, m_stream, [&] {
             if (m_d.nTets > 0) {
-                m_tetKernel<<<grid(m_d.nTets), m_block, 0, m_stream>>>(m_d, m_p);
+                m_tetKernel<<<grid(m_d.nTets, m_tetBlock), m_tetBlock, 0, m_stream>>>(m_d, m_p);
                 check(cudaGetLastError(), "the tetrahedron kernel launch");
             }
             if (m_d.nHexes > 0) {
-                m_hexKernel<<<grid(m_d.nHexes), m_block, 0, m_stream>>>(m_d, m_p);
+                m_hexKernel<<<grid(m_d.nHexes, m_hexBlock), m_hexBlock, 0, m_stream>>>(m_d, m_p);
                 check(cudaGetLastError(), "the hexahedron kernel launch");
             }
         });
@@ -271,7 +273,17 @@ public:
 
 private:
     static constexpr unsigned long long kNone = ~0ull;
-    unsigned grid(int n) const { return static_cast<unsigned>((n + m_block - 1) / m_block); }
+    unsigned grid(int n) const { return grid(n, m_block); }
+    static unsigned grid(int n, int block) { return static_cast<unsigned>((n + block - 1) / block); }
+    /// The block size for kernel k: blockSize, or less where k's registers allow fewer threads a
+    /// block (a law's double kernel may take 70 registers a thread: 1024 threads would not launch).
+    /// The results are the same for any block size.
+    template <class K>
+    int fitBlock(K k) const {
+        cudaFuncAttributes a{};
+        check(cudaFuncGetAttributes(&a, k), "cudaFuncGetAttributes");
+        return a.maxThreadsPerBlock >= m_block ? m_block : a.maxThreadsPerBlock / 32 * 32;
+    }
     void download(const T* from, T* to, size_t n) {
         if (n) check(cudaMemcpyAsync(to, from, n * sizeof(T), cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
     }
@@ -348,6 +360,7 @@ private:
     ElementParams<Law, T> m_p;
     using ElementKernel = void (*)(StepArrays<T>, ElementParams<Law, T>);
     ElementKernel m_tetKernel = tetKernel<Law, T>, m_hexKernel = hexKernel<Law, T>;  ///< the relaxed ones with Prony series
+    int m_tetBlock = 0, m_hexBlock = 0;  ///< their block sizes (fitBlock)
 };
 
 } // namespace

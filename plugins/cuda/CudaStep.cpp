@@ -137,6 +137,8 @@ core::LayoutBytes CudaStep::layoutBytes() const {
         // element kernels: connectivity, rest data, and the forces of their slots, written, then read
         // by the node kernel
         out.elementData += nT * (4 * I + 10 * T + 2 * 12 * T) + nH * (8 * I + 38 * T + 2 * 24 * T);
+        // the Prony states, read and written in place
+        out.elementData += (nT + nH) * 2 * 6 * static_cast<size_t>(b.setup.pronyTerms()) * T;
         // node kernel: u and v read and written (u also read by the element kernels), masses,
         // external forces, hold codes, the increments of CentralDifference
         out.nodeRows += n * (2 * 3 * T + 2 * 3 * T + 2 * T + 3 * T + 3 * I + (central ? 2 * 3 * T : 0));

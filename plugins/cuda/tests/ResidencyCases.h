@@ -95,23 +95,26 @@ inline void firstBadStepFound(const std::string& rootOpen) {
 }
 
 /// 60 steps in one run and 30 + a checkpoint + a restore + 30 give bitwise the same x and v, with
-/// both integrators (the kick of SemiImplicitEuler, the increments of CentralDifference).
+/// both integrators (the kick of SemiImplicitEuler, the increments of CentralDifference) and with a
+/// Prony series (its states, clock and coefficients).
 inline void restartIsBitwise(const std::string& root) {
     const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
-    CAPTURE(integrator);
+    const std::string prony = GENERATE(as<std::string>{}, "", "<ViscoelasticProny alpha=\"0.5 0.2\" tau=\"0.01 0.002\" apply=\"isochoric\"/>");
+    CAPTURE(integrator, prony);
     const Law law = deviceLaw("TransverselyIsotropic");
+    const std::string body = kLift + prony;
     const auto whole = [&] {
-        auto sim = core::Simulation::fromString(scene(law, root, kLift, integrator, Mesh::Mixed));
+        auto sim = core::Simulation::fromString(scene(law, root, body, integrator, Mesh::Mixed));
         sim->run(60);
         return std::pair{sim->state("mo").x(), sim->state("mo").v()};
     }();
     const fs::path file = fs::temp_directory_path() / ("fascia_cuda_restart_" + std::to_string(getpid()) + ".ckpt");
     {
-        auto sim = core::Simulation::fromString(scene(law, root, kLift, integrator, Mesh::Mixed));
+        auto sim = core::Simulation::fromString(scene(law, root, body, integrator, Mesh::Mixed));
         sim->run(30);
         sim->save(file.string());
     }
-    auto sim = core::Simulation::fromString(scene(law, root, kLift, integrator, Mesh::Mixed));
+    auto sim = core::Simulation::fromString(scene(law, root, body, integrator, Mesh::Mixed));
     sim->restore(file.string());
     sim->run(30);
     fs::remove(file);
