@@ -9,7 +9,8 @@
 using namespace cudatest;
 
 TEST_CASE("CudaStep emulated keeps the state on the device until it is read", "[CudaStep]") {
-    residency::stateStaysOnDevice("<CudaStep emulate=\"true\"/>");
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    residency::stateStaysOnDevice("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-11);
 }
 
 TEST_CASE("CudaStep emulated takes up what a program writes into the state it read", "[CudaStep]") {
