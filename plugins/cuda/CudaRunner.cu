@@ -305,6 +305,7 @@ private:
         m_Y.upload(h.Y, s);
         m_hY.upload(h.hY, s);
         m_ext.upload(h.ext, s);
+        m_loadF.upload(h.loadF, s);
         m_mass.upload(h.mass, s);
         m_invMass.upload(h.invMass, s);
         m_u.upload(h.u, s);
@@ -333,6 +334,8 @@ private:
         m_d.slotStart = m_slotStart.get();
         m_d.slots = m_slots.get();
         m_d.ext = m_ext.get();
+        m_d.nLoads = h.nLoads;
+        m_d.loadF = m_loadF.get();
         m_d.mass = m_mass.get();
         m_d.invMass = m_invMass.get();
         m_d.hold = m_hold.get();
@@ -348,7 +351,7 @@ private:
     cudaStream_t m_stream = nullptr;
     DeviceArray<int> m_tet, m_hex, m_slotStart;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<std::uint32_t> m_hold;
     DeviceArray<unsigned long long> m_bad;
     PinnedArray<T> m_stage, m_targets[2];

@@ -92,6 +92,22 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     readSeries(ff, s);
 }
 
+/// A ConstantForce with a load curve: its force at c = 1 in a load array of its own (StepArrays
+/// loadF), scaled by c(t) in the node kernel.
+void addCurvedLoad(const core::BaseForceField& ff, const core::NodalLoad& load, size_t nNodes, StepSetup& s) {
+    if (s.loads.size() == static_cast<size_t>(kMaxLoads))
+        unsupported(ff, "a ConstantForce with a load curve beyond the first " + std::to_string(kMaxLoads) + " (the device step takes " +
+                            std::to_string(kMaxLoads) + ")");
+    IndexList nodes;
+    Positions F;
+    load.unscaledLoad(nodes, F);
+    const size_t k = s.loads.size();
+    s.loads.push_back(&load);
+    s.loadF.resize(3 * nNodes * (k + 1), 0.0);
+    for (size_t j = 0; j < nodes.size(); ++j)
+        for (int i = 0; i < 3; ++i) s.loadF[3 * (k * nNodes + static_cast<size_t>(nodes[j])) + static_cast<size_t>(i)] += F[j][i];
+}
+
 /// Rest geometry of the tetrahedra: dN_a/dX for a = 1..3 (rows of Dm^-1) and the volumes.
 void tetGeometry(const core::BaseForceField& ff, const Positions& X, const Tetrahedra& tets, StepSetup& s) {
     const elements::TetRest rest = elements::tetRest(ff, X, tets);
@@ -189,8 +205,11 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
             tled = ff;
             readTLED(*ff, s);
         } else if (ff->className() == "ConstantForce") {
-            if (const auto* c = ff->findParam("curve"); c && c->isSet()) unsupported(*ff, "ConstantForce with a load curve");
-            ff->addForce(state, ext, 0.0);  // constant: its force once, summed with the others
+            const auto* c = ff->findParam("curve");
+            const auto* load = dynamic_cast<const core::NodalLoad*>(ff);
+            if (!c || !c->isSet()) ff->addForce(state, ext, 0.0);  // constant: its force once, summed with the others
+            else if (load) addCurvedLoad(*ff, *load, nNodes, s);
+            else unsupported(*ff, "this ConstantForce with a load curve (it does not give its load's terms, core::NodalLoad)");
         } else {
             unsupported(*ff, ff->className());
         }
@@ -229,6 +248,7 @@ NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s
     p.dt = dt;
     p.kick = kick;
     p.alpha = s.damping;
+    for (size_t k = 0; k < s.loads.size(); ++k) p.load[k] = s.loads[k]->loadFactor(t);
     p.a = 0.5 * s.damping * dt;  // CentralDifference's c2 = 1 - a, c1 = 1 - b
     p.b = p.a / (1.0 + p.a);
     return p;

@@ -5,6 +5,7 @@
 /// series' coefficients).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/materials/Material.h"
+#include "fascia/sim/LoadTerms.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <cstdint>
@@ -26,6 +27,8 @@ struct StepSetup {
     std::vector<int> slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<double> ext, mass, invMass;
+    std::vector<const core::NodalLoad*> loads;  ///< the ConstantForce components with a curve (StepArrays loadF)
+    std::vector<double> loadF;                  ///< their forces at c = 1, see StepArrays
     std::vector<std::uint32_t> hold;  ///< 3 per node, see StepArrays
     std::vector<int> targetAt;        ///< target j is axis targetAt[j] % 3 of node targetAt[j] / 3
     const materials::BaseMaterial* material = nullptr;  ///< the elements' one material
@@ -54,7 +57,7 @@ struct StepSetup {
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
 /// tetrahedra and hexahedra with one built-in law of DeviceLaws.h and the ViscoelasticProny series
-/// of its node, FixedConstraint, PrescribedDisplacement, ConstantForce without a curve, the masses,
+/// of its node, FixedConstraint, PrescribedDisplacement, ConstantForce (at most kMaxLoads with a load curve), the masses,
 /// SemiImplicitEuler or CentralDifference) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
 /// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
@@ -70,7 +73,8 @@ struct StepArraysHost {
     int nTets = 0, nHexes = 0, nNodes = 0;
     std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
-    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, mass, invMass, u, v, tu, tv, du;
+    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du;
+    int nLoads = 0;
     std::vector<std::uint32_t> hold;
     unsigned long long bad = ~0ull;
 
@@ -95,6 +99,8 @@ struct StepArraysHost {
         d.slotStart = slotStart.data();
         d.slots = slots.data();
         d.ext = ext.data();
+        d.nLoads = nLoads;
+        d.loadF = loadF.data();
         d.mass = mass.data();
         d.invMass = invMass.data();
         d.hold = hold.data();
@@ -131,6 +137,8 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.Y.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nTets), T(0));
     h.hY.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nHexes), T(0));
     h.ext = conv(s.ext);
+    h.loadF = conv(s.loadF);
+    h.nLoads = static_cast<int>(s.loads.size());
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);
     h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));
@@ -186,7 +194,12 @@ NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s
 /// The same in the scalar T of a runner.
 template <class T>
 NodeParams<T> nodeParamsIn(const NodeParams<double>& p) {
-    NodeParams<T> q{{T(p.g[0]), T(p.g[1]), T(p.g[2])}, T(p.dt), T(p.kick), T(p.alpha)};
+    NodeParams<T> q;
+    for (int i = 0; i < 3; ++i) q.g[i] = T(p.g[i]);
+    for (int k = 0; k < kMaxLoads; ++k) q.load[k] = T(p.load[k]);
+    q.dt = T(p.dt);
+    q.kick = T(p.kick);
+    q.alpha = T(p.alpha);
     q.a = T(p.a);
     q.b = T(p.b);
     q.start = p.start;

@@ -19,6 +19,11 @@ void ConstantForce::addForce(core::BaseMechanicalState&, Positions& f, double t)
     for (int i : m_nodes) f[i] += fi;
 }
 
+void ConstantForce::unscaledLoad(IndexList& nodes, Positions& forces) const {
+    nodes = m_nodes;
+    forces.assign(m_nodes.size(), m_perNode);
+}
+
 void ConstantForce::saveState(core::StateWriter& out) const { out.put("scale", m_scale); }
 void ConstantForce::restoreState(core::StateReader& in) { m_scale = in.getDouble("scale"); }
 

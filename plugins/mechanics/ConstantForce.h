@@ -1,12 +1,13 @@
 #pragma once
 #include "NodeSelection.h"
 #include "fascia/sim/LoadCurve.h"
+#include "fascia/sim/LoadTerms.h"
 
 namespace fascia::mechanics {
 
 /// A force on nodes: `force` on each node, or `totalForce` shared equally among them, scaled by
 /// a load curve: F(t) = c(t) F (constant when no curve is given).
-class ConstantForce : public core::BaseForceField {
+class ConstantForce : public core::BaseForceField, public core::NodalLoad {
 public:
     void init() override;
     void addForce(core::BaseMechanicalState& s, Positions& f, double t) override;
@@ -14,6 +15,8 @@ public:
     /// The load factor of the last addForce (the energy's).
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
+    void unscaledLoad(IndexList& nodes, Positions& forces) const override;
+    double loadFactor(double t) const override { return m_curve.value(t); }
 
     NodeSelection m_select{this};
     core::Param<Vec3> m_force{this, core::ParamSpec("force").unit("N").help("force applied to each selected node")};

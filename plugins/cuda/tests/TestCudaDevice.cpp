@@ -2,6 +2,7 @@
 // emulation test checks its kernel bodies on the CPU. Where no device is usable every case exits 77,
 // which ctest reports as skipped (SKIP_RETURN_CODE, plugins/cuda/CMakeLists.txt), never as passed.
 #include "CudaTestSupport.h"
+#include "LoadCases.h"
 #include "ResidencyCases.h"
 
 #include <cstdio>
@@ -176,4 +177,11 @@ TEST_CASE("CudaStep on the GPU names the first step whose state is not finite, w
 TEST_CASE("CudaStep on the GPU restarts from a checkpoint bitwise as the run that wrote it", "[CudaStep]") {
     requireDevice();
     residency::restartIsBitwise("<CudaStep/>");
+}
+
+TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    loads::curvedForcesFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
 }

@@ -184,13 +184,15 @@ FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, i
     return {f0, f1, f2};
 }
 
-/// The force on node `node`: its slots, the external force and m g; the held axes' components
+/// The force on node `node`: its slots, the external force, the curved loads and m g; the held axes' components
 /// removed (the constraints' projectForces).
 template <class T>
 FASCIA_HD FASCIA_INLINE void nodeForce(const StepArrays<T>& d, const NodeParams<T>& p, int node, T f[3]) {
     const elements::Vec33<T> fi = gatherForce(d, node);
     const T m = d.mass[node];
-    const T g[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1], fi.z + d.ext[3 * node + 2] + m * p.g[2]};
+    T g[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1], fi.z + d.ext[3 * node + 2] + m * p.g[2]};
+    for (int k = 0; k < kMaxLoads && k < d.nLoads; ++k)
+        for (int i = 0; i < 3; ++i) g[i] += p.load[k] * d.loadF[3 * (static_cast<size_t>(k) * d.nNodes + node) + i];
     for (int i = 0; i < 3; ++i) f[i] = d.hold[3 * node + i] != 0 ? T(0) : g[i];
 }
 

@@ -39,6 +39,8 @@ namespace fascia::cuda {
 ///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
 ///                                formed from displacements, accurate in float; lesson 6)
 ///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
+///   loadF[3 (k nNodes + n) + i]  the force of curved load k (a ConstantForce with a curve) at c = 1,
+///                                k < nLoads: the node adds NodeParams::load[k] times it
 ///   hold[3 n + i]                axis i of node n: 0 free, 1 held at rest (FixedConstraint), 2 + j
 ///                                following target j (PrescribedDisplacement): its force removed,
 ///                                then u = tu[j], v = tv[j] at the end of the step (the last
@@ -67,6 +69,8 @@ struct StepArrays {
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
+    int nLoads = 0;
+    const T* loadF = nullptr;
     const T* mass = nullptr;
     const T* invMass = nullptr;
     const std::uint32_t* hold = nullptr;
@@ -114,10 +118,15 @@ struct ElementParams {
 /// (its c2 = 1 - a and c1 = 1 / (1 + a) = 1 - b, which in float would hold a to 1e-3 only: b and a
 /// keep it to 1e-7), whether this step (re)starts the scheme (x(-1) from x(0), v(0), a(0)) and
 /// whether a step with this dt came before (the backward-difference velocity); the step's number
-/// (MechanicalGroup::stepIndex), kept in StepArrays::bad when the step leaves a state that is not finite.
+/// (MechanicalGroup::stepIndex), kept in StepArrays::bad when the step leaves a state that is not
+/// finite; the factors c_k(t) of the curved loads at the start of the step (ConstantForce's F(t) = c(t) F).
+/// The most ConstantForce components with a load curve the node kernel takes (a located error beyond).
+constexpr int kMaxLoads = 4;
+
 template <class T>
 struct NodeParams {
     T g[3];
+    T load[kMaxLoads] = {};  ///< c_k(t) of the curved loads (StepArrays::loadF)
     T dt, kick, alpha;
     T a = 0, b = 0;
     bool start = false, twoSteps = false;

@@ -1,0 +1,32 @@
+#pragma once
+// The loads of the device step beyond a constant force: ConstantForce with load curves (CudaStep
+// scales each curved load's force by c(t) in the node kernel). Run through the emulation
+// (TestCudaLoads.cpp) and through real launches (TestCudaDevice.cpp) with the same checks.
+#include "CudaTestSupport.h"
+
+namespace cudatest::loads {
+
+/// Two ConstantForce components with load curves (a ramp, and a curve that changes sign) beside
+/// the scene's constant pull, on nodes of the free end and of the side.
+inline const std::string kCurvedForces =
+    "<ConstantForce name=\"ramped\" indices=\"30 31 32\" force=\"0 0.003 -0.002\" curve=\"ramp 0.01\"/>"
+    "<ConstantForce name=\"swung\" indices=\"20 21\" force=\"0.004 0 0.001\" curve=\"linear 0 0  0.005 1  0.015 -1\"/>";
+
+/// The curved loads follow the CPU over 1000 steps (with either integrator, tetrahedra and the
+/// mixed mesh), and they matter: without them the trajectory ends far away.
+inline void curvedForcesFollowTheCpu(const std::string& root, double tol) {
+    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    CAPTURE(integrator, meshName(mesh));
+    const Law law = deviceLaw("NeoHookean");
+    const Pair r = runBoth(law, kCurvedForces, integrator, mesh, root, 1000);
+    const Pair without = runBoth(law, "", integrator, mesh, root, 1000);
+    const double apart = displacementError(without.device, r.cpu, r.rest);
+    CAPTURE(sci(r.err), sci(apart));
+    // (damped CentralDifference in double: the CPU's own rounding in x, about 7e-10; test_cuda_emulation)
+    const bool central = integrator.find("Central") != std::string::npos;
+    CHECK(r.err <= (central && tol < 1e-6 ? 5e-9 : tol));
+    CHECK(apart >= 0.05);
+}
+
+} // namespace cudatest::loads
