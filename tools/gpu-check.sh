@@ -49,7 +49,7 @@ cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFASCIA_WITH_VT
       -DEigen3_DIR="$deps/share/eigen3/cmake" -Dtinyxml2_DIR="$deps/lib/cmake/tinyxml2" -DCatch2_DIR="$deps/lib/cmake/Catch2" \
       > "$out/configure.log" 2>&1 || { say "configure failed (configure.log)"; tail -20 "$out/configure.log" >> "$summary"; exit 1; }
 say "found: $(grep -E '^(Eigen3|tinyxml2|Catch2)_DIR' "$build/CMakeCache.txt" | tr '\n' ' ')"
-targets="test_cuda_device test_cuda_emulation fascia-bench fascia_cuda fascia_tled fascia_mechanics fascia_meshio fascia_viscoelastic fascia_materials fascia_elements"
+targets="test_cuda_device test_cuda_emulation fascia-bench fascia_cuda fascia_tled fascia_heml fascia_mechanics fascia_meshio fascia_viscoelastic fascia_materials fascia_elements"
 cmake --build "$build" -j"$nproc" --target $targets > "$out/build.log" 2>&1 || { say "build failed (build.log)"; grep -E "error" "$out/build.log" | head -20 >> "$summary"; exit 1; }
 say "built in $(( $(date +%s) - t0 )) s"
 

@@ -167,7 +167,7 @@ TEST_CASE("A component the device step cannot run is a located error naming it",
     };
     const std::vector<Case> cases = {
         {scene(law, emu, "", "<ExplicitEuler/>"), "ExplicitEuler"},
-        {scene(law, emu, "<ConstantForce name=\"ramp\" indices=\"30\" force=\"0 0 1\" curve=\"linear 0 0 1 1\"/>"), "load curve"},
+        {scene(law, emu, "<HEMLForceField name=\"heml\"/>"), "HEMLForceField"},
         {scene(law, emu, "<ViscoelasticProny name=\"visco\" alpha=\"0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05\" tau=\"1 1 1 1 1 1 1 1 1\"/>"),
          "a Prony series of 9 terms"},
     };
