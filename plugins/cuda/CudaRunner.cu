@@ -36,6 +36,12 @@ __global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
 }
 
 template <class T>
+__global__ void faceKernel(StepArrays<T> d, FaceParams<T> q) {
+    const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if (k < d.nTris + d.nQuads) faceForces(d, q, k);
+}
+
+template <class T>
 __global__ void eulerKernel(StepArrays<T> d, NodeParams<T> p) {
     const int n = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
     if (n < d.nNodes) eulerStep(d, p, n);
@@ -222,6 +228,9 @@ public:
         m_hY.upload(y.data() + n, y.size() - n, m_stream);
     }
     void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
+    void setPressures(const FaceParams<double>& q) override {
+        for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
+    }
     void elementPass() override {
         m_timer.run(0, m_stream, [&] {
             if (m_d.nTets > 0) {
@@ -231,6 +240,10 @@ public:
             if (m_d.nHexes > 0) {
                 m_hexKernel<<<grid(m_d.nHexes, m_hexBlock), m_hexBlock, 0, m_stream>>>(m_d, m_p);
                 check(cudaGetLastError(), "the hexahedron kernel launch");
+            }
+            if (m_d.nTris + m_d.nQuads > 0) {
+                faceKernel<T><<<grid(m_d.nTris + m_d.nQuads), m_block, 0, m_stream>>>(m_d, m_q);
+                check(cudaGetLastError(), "the face kernel launch");
             }
         });
     }
@@ -306,6 +319,14 @@ private:
         m_hY.upload(h.hY, s);
         m_ext.upload(h.ext, s);
         m_loadF.upload(h.loadF, s);
+        m_tri.upload(h.tri, s);
+        m_quad.upload(h.quad, s);
+        m_triLoad.upload(h.triLoad, s);
+        m_quadLoad.upload(h.quadLoad, s);
+        m_triD.upload(h.triD, s);
+        m_quadD.upload(h.quadD, s);
+        m_tf.upload(h.tf, s);
+        m_qf.upload(h.qf, s);
         m_mass.upload(h.mass, s);
         m_invMass.upload(h.invMass, s);
         m_u.upload(h.u, s);
@@ -336,6 +357,16 @@ private:
         m_d.ext = m_ext.get();
         m_d.nLoads = h.nLoads;
         m_d.loadF = m_loadF.get();
+        m_d.nTris = h.nTris;
+        m_d.nQuads = h.nQuads;
+        m_d.tri = m_tri.get();
+        m_d.quad = m_quad.get();
+        m_d.triLoad = m_triLoad.get();
+        m_d.quadLoad = m_quadLoad.get();
+        m_d.triD = m_triD.get();
+        m_d.quadD = m_quadD.get();
+        m_d.tf = m_tf.get();
+        m_d.qf = m_qf.get();
         m_d.mass = m_mass.get();
         m_d.invMass = m_invMass.get();
         m_d.hold = m_hold.get();
@@ -349,9 +380,9 @@ private:
     int m_block;
     bool m_central;
     cudaStream_t m_stream = nullptr;
-    DeviceArray<int> m_tet, m_hex, m_slotStart;
+    DeviceArray<int> m_tet, m_hex, m_slotStart, m_tri, m_quad, m_triLoad, m_quadLoad;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<std::uint32_t> m_hold;
     DeviceArray<unsigned long long> m_bad;
     PinnedArray<T> m_stage, m_targets[2];
@@ -361,6 +392,7 @@ private:
     PassTimer m_timer;
     StepArrays<T> m_d;
     ElementParams<Law, T> m_p;
+    FaceParams<T> m_q;  ///< the pressures of the step (setPressures)
     using ElementKernel = void (*)(StepArrays<T>, ElementParams<Law, T>);
     ElementKernel m_tetKernel = tetKernel<Law, T>, m_hexKernel = hexKernel<Law, T>;  ///< the relaxed ones with Prony series
     int m_tetBlock = 0, m_hexBlock = 0;  ///< their block sizes (fitBlock)

@@ -65,6 +65,7 @@ void CudaStep::step(core::MechanicalGroup& g, double t, double dt) {
             b.runner->setRelaxation(b.A, b.B);
         }
     }
+    if (!b.setup.pressures.empty()) b.runner->setPressures(faceParams<double>(b.setup, t));
     b.runner->elementPass();
     NodeParams<double> p = nodeParams(g, b.setup, t, dt, b.kick.next(dt));
     p.step = static_cast<unsigned long long>(g.stepIndex);
@@ -142,8 +143,11 @@ core::LayoutBytes CudaStep::layoutBytes() const {
         // node kernel: u and v read and written (u also read by the element kernels), masses,
         // external forces, hold codes, the increments of CentralDifference
         out.nodeRows += n * (2 * 3 * T + 2 * 3 * T + 2 * T + 3 * T + 3 * I + (central ? 2 * 3 * T : 0));
+        // the faces under pressure: corners, rest differences, load index, their forces written and read
+        const size_t nTri = static_cast<size_t>(b.setup.nTris), nQ = static_cast<size_t>(b.setup.nQuads);
+        out.elementData += nTri * (4 * I + 6 * T + 2 * 3 * T) + nQ * (5 * I + 9 * T + 2 * 12 * T);
         // the slot lists of the gather
-        out.buffers += (n + 1) * I + (4 * nT + 8 * nH) * I;
+        out.buffers += (n + 1) * I + (4 * nT + 8 * nH + 3 * nTri + 4 * nQ) * I;
     }
     return out;
 }

@@ -44,10 +44,15 @@ public:
         if (m_p.prony.series > 0) {
             for (int e = 0; e < d.nTets; ++e) tetForces<true>(d, m_p, e);
             for (int e = 0; e < d.nHexes; ++e) hexForces<true>(d, m_p, e);
+            facePass(d);
             return;
         }
         for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
         for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
+        facePass(d);
+    }
+    void setPressures(const FaceParams<double>& q) override {
+        for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
     }
     void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
@@ -74,7 +79,11 @@ public:
     }
 
 private:
-    StepArraysHost<T> m_dev;  ///< the "device" copy
+    void facePass(const StepArrays<T>& d) {
+        for (int k = 0; k < d.nTris + d.nQuads; ++k) faceForces(d, m_q, k);
+    }
+    StepArraysHost<T> m_dev;
+    FaceParams<T> m_q;  ///< the "device" copy
     bool m_central;           ///< CentralDifference, else SemiImplicitEuler
     ElementParams<Law, T> m_p;
 };

@@ -24,7 +24,8 @@ public:
     /// The Prony states (StepArrays Y, then hY), as doubles: down and up (checkpoints).
     virtual void getPronyStates(std::vector<double>& Y) = 0;
     virtual void setPronyStates(const std::vector<double>& Y) = 0;
-    /// The element kernels over every tetrahedron and every hexahedron (launched; the GPU runs them
+    /// The element kernels over every tetrahedron and every hexahedron, and the face kernel over the
+    /// faces under pressure (launched; the GPU runs them
     /// in order with the rest, and the host does not wait; each advances its Prony states,
     /// StepArrays Y, once).
     virtual void elementPass() = 0;
@@ -32,6 +33,8 @@ public:
     /// term by term, the series in order (pronyCoefficients); until the first call the series relax
     /// nothing (A = B = 0). Set when they change (CudaStep: the first step, a change of dt).
     virtual void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) = 0;
+    /// The pressures of the SurfacePressure components for the next element passes (faceParams).
+    virtual void setPressures(const FaceParams<double>& q) = 0;
     /// Uploads the targets of the next node pass (StepArrays tu, tv; motionTargets), asynchronously.
     virtual void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) = 0;
     /// The node kernel of the setup's integrator over every node (after an element pass).

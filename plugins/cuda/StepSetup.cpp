@@ -92,6 +92,39 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     readSeries(ff, s);
 }
 
+/// The faces of the SurfacePressure components (s.pressures), in their order: node indices, rest
+/// differences from the first corner, and their load (StepArrays tri, quad, ...).
+void pressureFaces(const Positions& X, StepSetup& s) {
+    const auto put = [&](const int* nodes, int corners, size_t n, size_t f, std::vector<int>& at, std::vector<double>& D) {
+        for (int a = 0; a < corners; ++a) {
+            at[static_cast<size_t>(a) * n + f] = nodes[a];
+            if (a > 0)
+                for (int i = 0; i < 3; ++i)
+                    D[static_cast<size_t>(3 * (a - 1) + i) * n + f] = X[static_cast<size_t>(nodes[a])][i] - X[static_cast<size_t>(nodes[0])][i];
+        }
+    };
+    size_t nTri = 0, nQ = 0;
+    for (const core::PressureLoad* p : s.pressures) nTri += p->pressureTriangles().size(), nQ += p->pressureQuads().size();
+    s.nTris = static_cast<int>(nTri);
+    s.nQuads = static_cast<int>(nQ);
+    s.tri.resize(3 * nTri);
+    s.quad.resize(4 * nQ);
+    s.triD.resize(6 * nTri);
+    s.quadD.resize(9 * nQ);
+    s.triLoad.clear();
+    s.quadLoad.clear();
+    for (size_t k = 0; k < s.pressures.size(); ++k) {
+        for (const auto& t : s.pressures[k]->pressureTriangles()) {
+            put(t.data(), 3, nTri, s.triLoad.size(), s.tri, s.triD);
+            s.triLoad.push_back(static_cast<int>(k));
+        }
+        for (const auto& q : s.pressures[k]->pressureQuads()) {
+            put(q.data(), 4, nQ, s.quadLoad.size(), s.quad, s.quadD);
+            s.quadLoad.push_back(static_cast<int>(k));
+        }
+    }
+}
+
 /// A ConstantForce with a load curve: its force at c = 1 in a load array of its own (StepArrays
 /// loadF), scaled by c(t) in the node kernel.
 void addCurvedLoad(const core::BaseForceField& ff, const core::NodalLoad& load, size_t nNodes, StepSetup& s) {
@@ -177,9 +210,11 @@ void buildSlots(StepSetup& s) {
     s.slotStart.assign(static_cast<size_t>(s.nNodes) + 1, 0);
     for (int node : s.tet) ++s.slotStart[static_cast<size_t>(node) + 1];
     for (int node : s.hex) ++s.slotStart[static_cast<size_t>(node) + 1];
+    for (int node : s.tri) ++s.slotStart[static_cast<size_t>(node) + 1];
+    for (int node : s.quad) ++s.slotStart[static_cast<size_t>(node) + 1];
     for (size_t i = 0; i < static_cast<size_t>(s.nNodes); ++i) s.slotStart[i + 1] += s.slotStart[i];
     std::vector<int> fill(s.slotStart.begin(), s.slotStart.end() - 1);
-    s.slots.resize(4 * nT + 8 * nH);
+    s.slots.resize(s.tet.size() + s.hex.size() + s.tri.size() + s.quad.size());
     // by element (tetrahedra, then hexahedra), then corner: the order of the node's sum (a node is one
     // corner of an element at most)
     const auto add = [&](int node, size_t element, size_t a) {
@@ -189,6 +224,11 @@ void buildSlots(StepSetup& s) {
         for (size_t a = 0; a < 4; ++a) add(s.tet[a * nT + e], e, a);
     for (size_t e = 0; e < nH; ++e)
         for (size_t a = 0; a < 8; ++a) add(s.hex[a * nH + e], nT + e, a);
+    const size_t nTri = static_cast<size_t>(s.nTris), nQ = static_cast<size_t>(s.nQuads);
+    for (size_t f = 0; f < nTri; ++f)
+        for (size_t a = 0; a < 3; ++a) add(s.tri[a * nTri + f], nT + nH + f, a);
+    for (size_t f = 0; f < nQ; ++f)
+        for (size_t a = 0; a < 4; ++a) add(s.quad[a * nQ + f], nT + nH + nTri + f, a);
 }
 
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g) {
@@ -210,6 +250,12 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
             if (!c || !c->isSet()) ff->addForce(state, ext, 0.0);  // constant: its force once, summed with the others
             else if (load) addCurvedLoad(*ff, *load, nNodes, s);
             else unsupported(*ff, "this ConstantForce with a load curve (it does not give its load's terms, core::NodalLoad)");
+        } else if (ff->className() == "SurfacePressure") {
+            const auto* p = dynamic_cast<const core::PressureLoad*>(ff);
+            if (!p) unsupported(*ff, "this SurfacePressure (it does not give its faces, core::PressureLoad)");
+            if (s.pressures.size() == static_cast<size_t>(kMaxPressures))
+                unsupported(*ff, "a SurfacePressure beyond the first " + std::to_string(kMaxPressures) + " on one body");
+            s.pressures.push_back(p);
         } else {
             unsupported(*ff, ff->className());
         }
@@ -234,6 +280,9 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     s.nHexes = static_cast<int>(hexes.size());
     tetGeometry(*tled, state.x0(), tets, s);
     hexGeometry(*tled, state.x0(), hexes, s);
+    pressureFaces(state.x0(), s);
+    if (tets.size() + hexes.size() + s.tri.size() / 3 + s.quad.size() / 4 >= (size_t(1) << 26))
+        owner.fail("the mesh and its faces under pressure are too many for the device step's 32-bit slots");
     buildSlots(s);
     s.mass = g.mass;
     s.invMass = g.invMass;

@@ -24,6 +24,11 @@ struct StepSetup {
     std::vector<int> tet, hex;
     std::vector<double> dN, vol;
     std::vector<double> hdN, hgC, hvol, hgK;  ///< hexahedra
+    /// faces under pressure (StepArrays tri, quad, triD, quadD, triLoad, quadLoad) and their loads
+    int nTris = 0, nQuads = 0;
+    std::vector<int> tri, quad, triLoad, quadLoad;
+    std::vector<double> triD, quadD;
+    std::vector<const core::PressureLoad*> pressures;
     std::vector<int> slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<double> ext, mass, invMass;
@@ -75,6 +80,9 @@ struct StepArraysHost {
     std::vector<std::uint32_t> slots;
     std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du;
     int nLoads = 0;
+    int nTris = 0, nQuads = 0;
+    std::vector<int> tri, quad, triLoad, quadLoad;
+    std::vector<T> triD, quadD, tf, qf;
     std::vector<std::uint32_t> hold;
     unsigned long long bad = ~0ull;
 
@@ -100,6 +108,16 @@ struct StepArraysHost {
         d.slots = slots.data();
         d.ext = ext.data();
         d.nLoads = nLoads;
+        d.nTris = nTris;
+        d.nQuads = nQuads;
+        d.tri = tri.data();
+        d.quad = quad.data();
+        d.triD = triD.data();
+        d.quadD = quadD.data();
+        d.triLoad = triLoad.data();
+        d.quadLoad = quadLoad.data();
+        d.tf = tf.data();
+        d.qf = qf.data();
         d.loadF = loadF.data();
         d.mass = mass.data();
         d.invMass = invMass.data();
@@ -139,6 +157,16 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.ext = conv(s.ext);
     h.loadF = conv(s.loadF);
     h.nLoads = static_cast<int>(s.loads.size());
+    h.nTris = s.nTris;
+    h.nQuads = s.nQuads;
+    h.tri = s.tri;
+    h.quad = s.quad;
+    h.triLoad = s.triLoad;
+    h.quadLoad = s.quadLoad;
+    h.triD = conv(s.triD);
+    h.quadD = conv(s.quadD);
+    h.tf.assign(3 * static_cast<size_t>(s.nTris), T(0));
+    h.qf.assign(12 * static_cast<size_t>(s.nQuads), T(0));
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);
     h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));
@@ -186,6 +214,14 @@ struct CentralRule {
         ++steps;
     }
 };
+
+/// The face kernel's parameters of the step from t: the pressure of each SurfacePressure at t.
+template <class T>
+FaceParams<T> faceParams(const StepSetup& s, double t) {
+    FaceParams<T> q;
+    for (size_t k = 0; k < s.pressures.size(); ++k) q.p[k] = T(s.pressures[k]->pressureAt(t));
+    return q;
+}
 
 /// The node kernel's parameters of the step from t to t + dt in double (g(t) with the group's
 /// gravity curve; the kick for SemiImplicitEuler, a and b for CentralDifference).

@@ -1,5 +1,6 @@
 #include "SurfacePressure.h"
 #include "NodeSelection.h"
+#include "fascia/elements/Pressure.h"
 #include "fascia/scene/Node.h"
 
 #include <algorithm>
@@ -18,8 +19,6 @@ template <size_t N> std::array<int, N> sortedKey(std::array<int, N> k) {
 /// The 6 faces of a hexahedron (VTK/Gmsh node order: 0-3 one face, 4-7 the opposite one),
 /// each counterclockwise seen from outside a positively oriented hexahedron.
 constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-/// Corners of the bilinear patch in (xi, eta), in the face's node order.
-constexpr double kXi[4] = {-1, 1, 1, -1}, kEta[4] = {-1, -1, 1, 1};
 } // namespace
 
 template <class Faces> void SurfacePressure::keepNodeGroup(const MeshData& mesh, Faces& faces) const {
@@ -123,31 +122,23 @@ void SurfacePressure::init() {
                                                                : "selects no boundary face");
 }
 
+double SurfacePressure::pressureAt(double t) const { return m_pressure.get() * (m_curve.isSet() ? m_curve.value(t) : m_ramp.value(t)); }
+
 void SurfacePressure::addForce(core::BaseMechanicalState& s, Positions& f, double t) {
-    const double p = m_pressure.get() * (m_curve.isSet() ? m_curve.value(t) : m_ramp.value(t));
+    const double p = pressureAt(t);
     const Positions& x = s.x();
+    const auto diff = [&](int a, int b) { return elements::Vec33<double>{x[a][0] - x[b][0], x[a][1] - x[b][1], x[a][2] - x[b][2]}; };
     for (auto& tr : m_tris) {
-        // -p A n = -p/2 (x1 - x0) x (x2 - x0), a third on each corner
-        const Vec3 fa = (-p / 6.0) * (x[tr[1]] - x[tr[0]]).cross(x[tr[2]] - x[tr[0]]);
-        f[tr[0]] += fa;
-        f[tr[1]] += fa;
-        f[tr[2]] += fa;
+        // -p A n, a third on each corner (fascia/elements/Pressure.h)
+        const elements::Vec33<double> fa = elements::trianglePressureForce(diff(tr[1], tr[0]), diff(tr[2], tr[0]), p);
+        for (int a : tr) f[a] += Vec3(fa.x, fa.y, fa.z);
     }
-    // bilinear quadrilaterals: f_a = -p sum_g N_a(g) (x_xi x x_eta)(g), 2x2 Gauss points of weight 1
-    const double g = 1.0 / std::sqrt(3.0);
+    // bilinear quadrilaterals, 2x2 Gauss points (fascia/elements/Pressure.h)
     for (auto& q : m_quads) {
-        Vec3 fq[4] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-        for (int gp = 0; gp < 4; ++gp) {
-            const double xi = kXi[gp] * g, eta = kEta[gp] * g;
-            Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
-            for (int a = 0; a < 4; ++a) {
-                dxi += (0.25 * kXi[a] * (1 + kEta[a] * eta)) * x[q[a]];
-                deta += (0.25 * kEta[a] * (1 + kXi[a] * xi)) * x[q[a]];
-            }
-            const Vec3 n = dxi.cross(deta);
-            for (int a = 0; a < 4; ++a) fq[a] += (0.25 * (1 + kXi[a] * xi) * (1 + kEta[a] * eta)) * n;
-        }
-        for (int a = 0; a < 4; ++a) f[q[a]] -= p * fq[a];
+        const elements::Vec33<double> d[4] = {{0, 0, 0}, diff(q[1], q[0]), diff(q[2], q[0]), diff(q[3], q[0])};
+        elements::Vec33<double> fq[4];
+        elements::quadPressureForces(d, p, fq);
+        for (int a = 0; a < 4; ++a) f[q[a]] += Vec3(fq[a].x, fq[a].y, fq[a].z);
     }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include "fascia/sim/LoadCurve.h"
+#include "fascia/sim/LoadTerms.h"
 #include "fascia/sim/Mechanics.h"
 
 namespace fascia::mechanics {
@@ -15,12 +16,15 @@ namespace fascia::mechanics {
 /// tetrahedra used by one tetrahedron only), the quadrilaterals the faces of its hexahedra used by one
 /// hexahedron only; restricted to a physical group of triangles (`triangleGroup`) or to a node group
 /// (`nodeGroup`: faces with all their nodes in it), and oriented outwards from the element they bound.
-class SurfacePressure : public core::BaseForceField {
+class SurfacePressure : public core::BaseForceField, public core::PressureLoad {
 public:
     void init() override;
     void addForce(core::BaseMechanicalState& s, Positions& f, double t) override;
     size_t triangleCount() const { return m_tris.size(); }
     size_t quadCount() const { return m_quads.size(); }
+    const Triangles& pressureTriangles() const override { return m_tris; }
+    const std::vector<std::array<int, 4>>& pressureQuads() const override { return m_quads; }
+    double pressureAt(double t) const override;
 
     core::Param<double> m_pressure{this, core::ParamSpec("pressure").unit("Pa").required().help("pressure p (positive pushes into the body)")};
     core::Param<int> m_triangleGroup{this, core::ParamSpec("triangleGroup").min(0).help("physical group tag of the triangles (0: all)"), 0};

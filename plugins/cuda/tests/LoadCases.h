@@ -29,4 +29,27 @@ inline void curvedForcesFollowTheCpu(const std::string& root, double tol) {
     CHECK(apart >= 0.05);
 }
 
+/// Two SurfacePressure components: a pressure on the free end (z = 0.03) growing over 5 ms, and a
+/// constant suction on the side x = 0.02 (triangles on the tetrahedral grid, quadrilaterals on the
+/// hexahedral one, which the mixed mesh's grid is).
+inline const std::string kPressures =
+    "<SurfacePressure name=\"push\" nodeGroup=\"zmax\" pressure=\"40\" curve=\"ramp 0.005\"/>"
+    "<SurfacePressure name=\"suck\" nodeGroup=\"xmax\" pressure=\"-15\"/>";
+
+/// The pressures follow the CPU over 1000 steps (either integrator, triangles and quadrilaterals),
+/// and they matter.
+inline void pressuresFollowTheCpu(const std::string& root, double tol) {
+    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
+    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
+    CAPTURE(integrator, meshName(mesh));
+    const Law law = deviceLaw("NeoHookean");
+    const Pair r = runBoth(law, kPressures, integrator, mesh, root, 1000);
+    const Pair without = runBoth(law, "", integrator, mesh, root, 1000);
+    const double apart = displacementError(without.device, r.cpu, r.rest);
+    CAPTURE(sci(r.err), sci(apart));
+    const bool central = integrator.find("Central") != std::string::npos;
+    CHECK(r.err <= (central && tol < 1e-6 ? 5e-9 : tol));
+    CHECK(apart >= 0.05);
+}
+
 } // namespace cudatest::loads

@@ -185,3 +185,10 @@ TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU
     CAPTURE(precision);
     loads::curvedForcesFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
 }
+
+TEST_CASE("CudaStep on the GPU applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    loads::pressuresFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}

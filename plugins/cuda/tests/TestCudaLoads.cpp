@@ -10,6 +10,12 @@ TEST_CASE("CudaStep emulated scales ConstantForce by its load curve as the CPU d
     loads::curvedForcesFollowTheCpu("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
 }
 
+TEST_CASE("CudaStep emulated applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    loads::pressuresFollowTheCpu("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
 TEST_CASE("More ConstantForce components with a load curve than the device step takes is a located error", "[CudaStep]") {
     std::string body;
     for (int k = 0; k <= cuda::kMaxLoads; ++k)

@@ -12,6 +12,8 @@
 ///     response and P: the rest shift -> S split into its isochoric and volumetric parts (TLED eq.
 ///     (10), secondPiola) -> Y_i = A_i R + B_i Y_i (TLED eq. (30), the element's own states
 ///     advanced in place), S = Phi - sum_i Y_i (TLED eq. (24)) -> P = F S;
+///   face kernel (a face under a SurfacePressure): its current edges from the rest ones and u ->
+///     its follower load (fascia/elements/Pressure.h), written to its own slots;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
 ///     + m g, held axes zeroed, then SemiImplicitEuler (v += kick (f/m - alpha v), u += dt v, HEML
 ///     eq. (32)) or CentralDifference, the held axes at their constraint's position and velocity
@@ -19,6 +21,7 @@
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/elements/BatchView.h"
 #include "fascia/elements/Hourglass.h"
+#include "fascia/elements/Pressure.h"
 #include "fascia/elements/Relaxation.h"
 #include "fascia/materials/Material.h"
 
@@ -169,6 +172,37 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
         for (int i = 0; i < 3; ++i) out[3 * a + i] = f.v[a][i][0];
 }
 
+/// The follower pressure on face k of the faces under pressure (the triangles, then the
+/// quadrilaterals; fascia/elements/Pressure.h), from its rest differences and u, written to its own
+/// slots (tf or qf).
+template <class T>
+FASCIA_HD FASCIA_INLINE void faceForces(const StepArrays<T>& d, const FaceParams<T>& q, int k) {
+    const auto rel = [&](const int* nodes, const T* D, int n, int f, int a) {
+        const int b = nodes[a * n + f], o = nodes[f];
+        return elements::Vec33<T>{D[(3 * (a - 1) + 0) * n + f] + (d.u[3 * b + 0] - d.u[3 * o + 0]),
+                                  D[(3 * (a - 1) + 1) * n + f] + (d.u[3 * b + 1] - d.u[3 * o + 1]),
+                                  D[(3 * (a - 1) + 2) * n + f] + (d.u[3 * b + 2] - d.u[3 * o + 2])};
+    };
+    if (k < d.nTris) {
+        const elements::Vec33<T> f = elements::trianglePressureForce(rel(d.tri, d.triD, d.nTris, k, 1), rel(d.tri, d.triD, d.nTris, k, 2),
+                                                                     q.p[d.triLoad[k]]);
+        d.tf[3 * k + 0] = f.x;
+        d.tf[3 * k + 1] = f.y;
+        d.tf[3 * k + 2] = f.z;
+        return;
+    }
+    const int f = k - d.nTris;
+    const elements::Vec33<T> x[4] = {{0, 0, 0}, rel(d.quad, d.quadD, d.nQuads, f, 1), rel(d.quad, d.quadD, d.nQuads, f, 2),
+                                     rel(d.quad, d.quadD, d.nQuads, f, 3)};
+    elements::Vec33<T> out[4];
+    elements::quadPressureForces(x, q.p[d.quadLoad[f]], out);
+    for (int a = 0; a < 4; ++a) {
+        d.qf[3 * (4 * f + a) + 0] = out[a].x;
+        d.qf[3 * (4 * f + a) + 1] = out[a].y;
+        d.qf[3 * (4 * f + a) + 2] = out[a].z;
+    }
+}
+
 /// The internal force on node `node`: its slots summed in their fixed order.
 template <class T>
 FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, int node) {
@@ -176,7 +210,11 @@ FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, i
     for (int k = d.slotStart[node]; k < d.slotStart[node + 1]; ++k) {
         const std::uint32_t s = d.slots[k];
         const int e = static_cast<int>(s >> 3), a = static_cast<int>(s & 7u);
-        const T* ef = e < d.nTets ? d.ef + 3 * (4 * static_cast<size_t>(e) + a) : d.hef + 3 * (8 * static_cast<size_t>(e - d.nTets) + a);
+        const int h = e - d.nTets, t = h - d.nHexes, q = t - d.nTris;
+        const T* ef = e < d.nTets     ? d.ef + 3 * (4 * static_cast<size_t>(e) + a)
+                      : h < d.nHexes  ? d.hef + 3 * (8 * static_cast<size_t>(h) + a)
+                      : t < d.nTris   ? d.tf + 3 * static_cast<size_t>(t)
+                                      : d.qf + 3 * (4 * static_cast<size_t>(q) + a);
         f0 += ef[0];
         f1 += ef[1];
         f2 += ef[2];

@@ -32,10 +32,19 @@ namespace fascia::cuda {
 ///                                kernel, once per element pass (zero at the start; empty without
 ///                                a series)
 ///   hY[(6 k + c) nHexes + e]     the same for hexahedron e
+/// Faces under a SurfacePressure (its follower load, fascia/elements/Pressure.h), triangle f and
+/// quadrilateral f, corner a:
+///   tri[a nTris + f], quad[a nQuads + f]   node of corner a (turned outwards)
+///   triD[(3 (a-1) + i) nTris + f]          rest difference X_a - X_0 (a = 1, 2), quadD likewise
+///                                (a = 1..3): the current ones are these plus u_a - u_0
+///   triLoad[f], quadLoad[f]      the face's SurfacePressure (FaceParams::p)
+///   tf[3 f + i]                  the force on each corner of triangle f (one for all three)
+///   qf[3 (4 f + a) + i]          the force on corner a of quadrilateral f
 /// Node n, component i:
 ///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
-///                                tetrahedra, then the hexahedra (e - nTets), by element then
-///                                corner: the fixed order of the sum (docs/design.md, principle 5)
+///                                tetrahedra, then the hexahedra (e - nTets), then the triangles
+///                                and the quadrilaterals under pressure, by element then corner:
+///                                the fixed order of the sum (docs/design.md, principle 5)
 ///   u[3 n + i], v[3 n + i]       displacement from the rest position, velocity (u, not x: F is
 ///                                formed from displacements, accurate in float; lesson 6)
 ///   ext[3 n + i]                 external force (ConstantForce), mass[n], invMass[n] (0: no mass)
@@ -66,6 +75,15 @@ struct StepArrays {
     T* hef = nullptr;
     T* Y = nullptr;
     T* hY = nullptr;
+    int nTris = 0, nQuads = 0;
+    const int* tri = nullptr;
+    const int* quad = nullptr;
+    const T* triD = nullptr;
+    const T* quadD = nullptr;
+    const int* triLoad = nullptr;
+    const int* quadLoad = nullptr;
+    T* tf = nullptr;
+    T* qf = nullptr;
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
@@ -122,6 +140,15 @@ struct ElementParams {
 /// finite; the factors c_k(t) of the curved loads at the start of the step (ConstantForce's F(t) = c(t) F).
 /// The most ConstantForce components with a load curve the node kernel takes (a located error beyond).
 constexpr int kMaxLoads = 4;
+
+/// The most SurfacePressure components the face kernel takes (a located error beyond).
+constexpr int kMaxPressures = 4;
+
+/// The face kernel's step: the pressure c(t) p of each SurfacePressure at the start of the step.
+template <class T>
+struct FaceParams {
+    T p[kMaxPressures] = {};
+};
 
 template <class T>
 struct NodeParams {
