@@ -193,6 +193,10 @@ void CudaStep::restoreState(core::StateReader& in) {
         in.getInto("v", b.v.data(), b.v.size());
         in.getInto("increments", b.du.data(), b.du.size());
         b.Y = in.getDoubles("prony");
+        const size_t states = 6 * static_cast<size_t>(b.setup.pronyTerms()) * static_cast<size_t>(b.setup.nTets + b.setup.nHexes);
+        if (b.Y.size() != states)
+            in.fail("[" + path() + "] the checkpoint holds " + std::to_string(b.Y.size()) + " Prony states for '" + b.state->path() +
+                    "', this scene " + std::to_string(states));
         b.clock.restore(in);
         b.A = in.getDoubles("pronyA");
         b.B = in.getDoubles("pronyB");
