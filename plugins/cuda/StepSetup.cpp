@@ -27,6 +27,14 @@ const P* paramOf(const core::Component& c, const std::string& name) {
            {"remove CudaStep to run this scene on the CPU"});
 }
 
+/// The same located at c's parameter p.
+[[noreturn]] void unsupported(const core::Component& c, const core::BaseParam& p, const std::string& what) {
+    c.fail(p,
+           what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
+                  "fallback to the host)",
+           {"remove CudaStep to run this scene on the CPU"});
+}
+
 /// The integrator and its parameters: SemiImplicitEuler or CentralDifference.
 void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
     if (integ.className() == "CentralDifference") s.scheme = StepSetup::Scheme::CentralDifference;
@@ -101,10 +109,11 @@ std::vector<const materials::BaseMaterial*> readGroups(const core::BaseForceFiel
         const bool onDevice = selectDeviceLaw(m, [](auto tag, const materials::BaseMaterial*) {
             return !std::is_same_v<typename decltype(tag)::type, elements::GenericLaw>;
         });
-        if (!onDevice)
-            unsupported(*m, "the material " + m->className() +
-                                (groups->isSet() ? " of " + ff.className() + " '" + ff.name() + "' groupMaterials=\"" + groups->get().text + "\"" : "") +
-                                " (the device step runs " + deviceLawNames() + ")");
+        const std::string laws = " (the device step runs " + deviceLawNames() + ")";
+        // a group's material: at the groupMaterials that names it; the force field's one material: at the material
+        if (!onDevice && groups->isSet() && m != link->get())
+            unsupported(ff, *groups, "groupMaterials: the material " + m->className() + " '" + m->name() + "'" + laws);
+        if (!onDevice) unsupported(*m, "the material " + m->className() + laws);
         StepSetup::Group g;
         g.material = m;
         for (int w = 0; w < 2; ++w)
