@@ -7,7 +7,7 @@ static void registerAll(fascia::core::Registry& r) {
     std::string why;
     const int n = fascia::cuda::cudaDevices(why);
     r.add<fascia::cuda::CudaStep>(
-        "CudaStep", "runs the whole step on a CUDA GPU (TLED tetrahedra and hexahedra, ViscoelasticProny, FixedConstraint, PrescribedDisplacement, ConstantForce with its load curve, SurfacePressure, gravity, SemiImplicitEuler, CentralDifference); " +
+        "CudaStep", "runs the whole step on a CUDA GPU (TLED tetrahedra and hexahedra, groupMaterials, fibre arrays, ViscoelasticProny, FixedConstraint, PrescribedDisplacement, ConstantForce with its load curve, SurfacePressure, gravity, SemiImplicitEuler, CentralDifference); " +
                         std::string(n > 0 ? "available here: " + std::to_string(n) + " device(s), " + why
                                           : "not available here: " + why));
 }

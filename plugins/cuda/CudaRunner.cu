@@ -1,7 +1,9 @@
 // The device step on a GPU: the kernel bodies of StepKernels.h wrapped in __global__ launches, one
-// thread per element or node, over device copies of the StepArraysHost that the emulation uses too.
-// Kept to one file and to the laws of DeviceLaws.h: each law costs two element kernels
-// (tetrahedra, hexahedra) per precision in nvcc time.
+// thread per element or node, over device copies of the StepArraysHost that the emulation uses too;
+// the element kernels launched once per material group, over its element list. Kept to one file and
+// to the laws of DeviceLaws.h: each law costs two element kernels (tetrahedra, hexahedra) per
+// precision and variant (elastic or relaxed; for the laws that read a fibre, with fibres per element
+// or not) in nvcc time.
 #include "DeviceLaws.h"
 #include "StepRunner.h"
 #include "fascia/base/Error.h"
@@ -22,17 +24,28 @@ void check(cudaError_t e, const char* what) {
         core::throwSimulationError(std::string("[CudaStep] ") + what + " failed: " + cudaGetErrorName(e) + ": " + cudaGetErrorString(e));
 }
 
-// (Relaxed: with the Prony series, a kernel of its own, so that the elastic one keeps its registers)
-template <class Law, class T, bool Relaxed = false>
-__global__ void tetKernel(StepArrays<T> d, ElementParams<Law, T> p) {
-    const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nTets) tetForces<Relaxed>(d, p, e);
+// (Relaxed: with the Prony series, a kernel of its own, so that the elastic one keeps its registers;
+// PerElementFibres likewise. Listed: thread k takes element list[k] of a material group; else
+// element k of the whole mesh of one material, in a kernel of its own too: a list read at run time
+// changed the registers of every law's kernels, by -5 to +8, ptxas on sm_90)
+template <class Law, class T, bool Relaxed, bool PerElementFibres, bool Listed>
+__global__ void tetKernel(StepArrays<T> d, ElementParams<Law, T> p, const int* list, int count) {
+    const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if constexpr (Listed) {
+        if (k < count) tetForces<Relaxed, PerElementFibres>(d, p, list[k]);
+    } else if (k < d.nTets) {
+        tetForces<Relaxed, PerElementFibres>(d, p, k);
+    }
 }
 
-template <class Law, class T, bool Relaxed = false>
-__global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p) {
-    const int e = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
-    if (e < d.nHexes) hexForces<Relaxed>(d, p, e);
+template <class Law, class T, bool Relaxed, bool PerElementFibres, bool Listed>
+__global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p, const int* list, int count) {
+    const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if constexpr (Listed) {
+        if (k < count) hexForces<Relaxed, PerElementFibres>(d, p, list[k]);
+    } else if (k < d.nHexes) {
+        hexForces<Relaxed, PerElementFibres>(d, p, k);
+    }
 }
 
 template <class T>
@@ -162,28 +175,97 @@ private:
     long m_count[2] = {0, 0};
 };
 
+unsigned grid(int n, int block) { return static_cast<unsigned>((n + block - 1) / block); }
+
+/// The block size for kernel k: `block`, or less where k's registers allow fewer threads a block (a
+/// law's double kernel may take 70 registers a thread: 1024 threads would not launch). The results
+/// are the same for any block size.
+template <class K>
+int fitBlock(K k, int block) {
+    cudaFuncAttributes a{};
+    check(cudaFuncGetAttributes(&a, k), "cudaFuncGetAttributes");
+    return a.maxThreadsPerBlock >= block ? block : a.maxThreadsPerBlock / 32 * 32;
+}
+
+/// The element kernels of one material group (StepSetup::Group), whatever its law: a runner holds
+/// one per group and launches them in turn.
+template <class T>
+class ElementPass {
+public:
+    virtual ~ElementPass() = default;
+    /// Its kernels over its tetrahedra and hexahedra, on stream s.
+    virtual void launch(const StepArrays<T>& d, cudaStream_t s) = 0;
+    /// Its Prony series (the coefficients are every group's).
+    virtual PronyParams<T>& prony() = 0;
+};
+
+/// The element kernels of a group of law Law: its parameters, its element lists on the device (none
+/// when the setup has one group: the kernels then run over every element), and the kernel variant
+/// of the setup (relaxed with Prony series; with fibres per element where the setup has them and the
+/// law reads one, so that the other laws compile no such variant).
+template <class Law, class T>
+class LawPass final : public ElementPass<T> {
+public:
+    LawPass(const StepSetup& s, const StepSetup::Group& g, const Law& law, int block, cudaStream_t stream)
+        : m_p(elementParams<T>(s, g, law)) {
+        if (s.groups.size() > 1) {
+            m_tets.upload(g.tets, stream);
+            m_hexes.upload(g.hexes, stream);
+        }
+        m_nTets = s.groups.size() > 1 ? static_cast<int>(g.tets.size()) : s.nTets;
+        m_nHexes = s.groups.size() > 1 ? static_cast<int>(g.hexes.size()) : s.nHexes;
+        const bool listed = s.groups.size() > 1;
+        if (m_p.prony.series > 0) listed ? choose<true, true>(s.fibresPerElement) : choose<true, false>(s.fibresPerElement);
+        else listed ? choose<false, true>(s.fibresPerElement) : choose<false, false>(s.fibresPerElement);
+        m_tetBlock = fitBlock(m_tetKernel, block);
+        m_hexBlock = fitBlock(m_hexKernel, block);
+    }
+    void launch(const StepArrays<T>& d, cudaStream_t s) override {
+        if (m_nTets > 0) {
+            m_tetKernel<<<grid(m_nTets, m_tetBlock), m_tetBlock, 0, s>>>(d, m_p, m_tets.get(), m_nTets);
+            check(cudaGetLastError(), "the tetrahedron kernel launch");
+        }
+        if (m_nHexes > 0) {
+            m_hexKernel<<<grid(m_nHexes, m_hexBlock), m_hexBlock, 0, s>>>(d, m_p, m_hexes.get(), m_nHexes);
+            check(cudaGetLastError(), "the hexahedron kernel launch");
+        }
+    }
+    PronyParams<T>& prony() override { return m_p.prony; }
+
+private:
+    template <bool Relaxed, bool Listed>
+    void choose(bool fibres) {
+        if constexpr (detail::Uses<Law>::i4 || detail::Uses<Law>::i6)
+            if (fibres) {
+                m_tetKernel = tetKernel<Law, T, Relaxed, true, Listed>;
+                m_hexKernel = hexKernel<Law, T, Relaxed, true, Listed>;
+                return;
+            }
+        m_tetKernel = tetKernel<Law, T, Relaxed, false, Listed>;
+        m_hexKernel = hexKernel<Law, T, Relaxed, false, Listed>;
+    }
+    ElementParams<Law, T> m_p;
+    DeviceArray<int> m_tets, m_hexes;  ///< the group's element lists (empty: every element)
+    int m_nTets = 0, m_nHexes = 0;     ///< the threads of each kernel
+    using Kernel = void (*)(StepArrays<T>, ElementParams<Law, T>, const int*, int);
+    Kernel m_tetKernel = nullptr, m_hexKernel = nullptr;
+    int m_tetBlock = 0, m_hexBlock = 0;  ///< their block sizes (fitBlock)
+};
+
 /// The device step of one body: its arrays on the device, its launches on a stream of its own. The
 /// host queues steps without waiting for them; it waits only to read something back (the state,
 /// the forces, the record of a state that is not finite) and when it reuses the pinned buffer of
 /// the targets it uploaded two steps before.
-template <class Law, class T>
+template <class T>
 class CudaRunner final : public StepRunner {
 public:
-    CudaRunner(const StepSetup& s, const Law& law, int block) : m_block(block), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
+    CudaRunner(const StepSetup& s, int block) : m_block(block), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
         check(cudaStreamCreateWithFlags(&m_stream, cudaStreamNonBlocking), "cudaStreamCreate");
         for (cudaEvent_t& e : m_targetsCopied) check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
         upload(toArrays<T>(s));
-        m_p.law = law;
-        m_p.J0 = static_cast<T>(s.J0);
-        m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
-        m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
-        m_p.prony = pronyParams<T>(s);
-        if (m_p.prony.series > 0) {
-            m_tetKernel = tetKernel<Law, T, true>;
-            m_hexKernel = hexKernel<Law, T, true>;
-        }
-        m_tetBlock = fitBlock(m_tetKernel);
-        m_hexBlock = fitBlock(m_hexKernel);
+        forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
+            m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>, T>>(s, g, law, block, m_stream));
+        });
     }
     ~CudaRunner() override {
         cudaStreamSynchronize(m_stream);
@@ -227,20 +309,15 @@ public:
         m_Y.upload(y.data(), n, m_stream);
         m_hY.upload(y.data() + n, y.size() - n, m_stream);
     }
-    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override {
+        for (const auto& pass : m_passes) setCoefficients(pass->prony(), A, B);
+    }
     void setPressures(const FaceParams<double>& q) override {
         for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
     }
     void elementPass() override {
         m_timer.run(0, m_stream, [&] {
-            if (m_d.nTets > 0) {
-                m_tetKernel<<<grid(m_d.nTets, m_tetBlock), m_tetBlock, 0, m_stream>>>(m_d, m_p);
-                check(cudaGetLastError(), "the tetrahedron kernel launch");
-            }
-            if (m_d.nHexes > 0) {
-                m_hexKernel<<<grid(m_d.nHexes, m_hexBlock), m_hexBlock, 0, m_stream>>>(m_d, m_p);
-                check(cudaGetLastError(), "the hexahedron kernel launch");
-            }
+            for (const auto& pass : m_passes) pass->launch(m_d, m_stream);
             if (m_d.nTris + m_d.nQuads > 0) {
                 faceKernel<T><<<grid(m_d.nTris + m_d.nQuads), m_block, 0, m_stream>>>(m_d, m_q);
                 check(cudaGetLastError(), "the face kernel launch");
@@ -286,17 +363,7 @@ public:
 
 private:
     static constexpr unsigned long long kNone = ~0ull;
-    unsigned grid(int n) const { return grid(n, m_block); }
-    static unsigned grid(int n, int block) { return static_cast<unsigned>((n + block - 1) / block); }
-    /// The block size for kernel k: blockSize, or less where k's registers allow fewer threads a
-    /// block (a law's double kernel may take 70 registers a thread: 1024 threads would not launch).
-    /// The results are the same for any block size.
-    template <class K>
-    int fitBlock(K k) const {
-        cudaFuncAttributes a{};
-        check(cudaFuncGetAttributes(&a, k), "cudaFuncGetAttributes");
-        return a.maxThreadsPerBlock >= m_block ? m_block : a.maxThreadsPerBlock / 32 * 32;
-    }
+    unsigned grid(int n) const { return fascia::cuda::grid(n, m_block); }
     void download(const T* from, T* to, size_t n) {
         if (n) check(cudaMemcpyAsync(to, from, n * sizeof(T), cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
     }
@@ -315,6 +382,10 @@ private:
         m_hvol.upload(h.hvol, s);
         m_hgK.upload(h.hgK, s);
         m_hef.upload(h.hef, s);
+        m_fa.upload(h.fa, s);
+        m_fb.upload(h.fb, s);
+        m_hfa.upload(h.hfa, s);
+        m_hfb.upload(h.hfb, s);
         m_Y.upload(h.Y, s);
         m_hY.upload(h.hY, s);
         m_ext.upload(h.ext, s);
@@ -350,6 +421,10 @@ private:
         m_d.hvol = m_hvol.get();
         m_d.hgK = m_hgK.get();
         m_d.hef = m_hef.get();
+        m_d.fa = m_fa.get();
+        m_d.fb = m_fb.get();
+        m_d.hfa = m_hfa.get();
+        m_d.hfb = m_hfb.get();
         m_d.Y = m_Y.get();
         m_d.hY = m_hY.get();
         m_d.slotStart = m_slotStart.get();
@@ -383,6 +458,7 @@ private:
     DeviceArray<int> m_tet, m_hex, m_slotStart, m_tri, m_quad, m_triLoad, m_quadLoad;
     DeviceArray<std::uint32_t> m_slots;
     DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_fa, m_fb, m_hfa, m_hfb;  ///< the fibre directions per element (empty without fibre arrays)
     DeviceArray<std::uint32_t> m_hold;
     DeviceArray<unsigned long long> m_bad;
     PinnedArray<T> m_stage, m_targets[2];
@@ -391,26 +467,15 @@ private:
     int m_nextTargets = 0;
     PassTimer m_timer;
     StepArrays<T> m_d;
-    ElementParams<Law, T> m_p;
+    std::vector<std::unique_ptr<ElementPass<T>>> m_passes;  ///< one per material group (StepSetup::groups)
     FaceParams<T> m_q;  ///< the pressures of the step (setPressures)
-    using ElementKernel = void (*)(StepArrays<T>, ElementParams<Law, T>);
-    ElementKernel m_tetKernel = tetKernel<Law, T>, m_hexKernel = hexKernel<Law, T>;  ///< the relaxed ones with Prony series
-    int m_tetBlock = 0, m_hexBlock = 0;  ///< their block sizes (fitBlock)
 };
 
 } // namespace
 
 std::unique_ptr<StepRunner> makeCudaRunner(const StepSetup& s, Precision p, int block) {
-    return selectDeviceLaw(s.material, [&](auto tag, const materials::BaseMaterial* m) -> std::unique_ptr<StepRunner> {
-        using Law = typename decltype(tag)::type;
-        if constexpr (std::is_same_v<Law, elements::GenericLaw>) {
-            m->fail("the material " + m->className() + " is not on the GPU step (it runs " + deviceLawNames() + ")");
-        } else {
-            const Law& law = elements::lawOf<Law>(m);
-            if (p == Precision::Float) return std::make_unique<CudaRunner<Law, float>>(s, law, block);
-            return std::make_unique<CudaRunner<Law, double>>(s, law, block);
-        }
-    });
+    if (p == Precision::Float) return std::make_unique<CudaRunner<float>>(s, block);
+    return std::make_unique<CudaRunner<double>>(s, block);
 }
 
 int cudaDevices(std::string& why) {

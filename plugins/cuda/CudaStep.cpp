@@ -140,6 +140,9 @@ core::LayoutBytes CudaStep::layoutBytes() const {
         out.elementData += nT * (4 * I + 10 * T + 2 * 12 * T) + nH * (8 * I + 38 * T + 2 * 24 * T);
         // the Prony states, read and written in place
         out.elementData += (nT + nH) * 2 * 6 * static_cast<size_t>(b.setup.pronyTerms()) * T;
+        // the fibre directions per element (3 per direction), and the groups' element lists
+        out.elementData += (b.setup.fa.size() + b.setup.fb.size() + b.setup.hfa.size() + b.setup.hfb.size()) * T;
+        if (b.setup.groups.size() > 1) out.elementData += (nT + nH) * I;
         // node kernel: u and v read and written (u also read by the element kernels), masses,
         // external forces, hold codes, the increments of CentralDifference
         out.nodeRows += n * (2 * 3 * T + 2 * 3 * T + 2 * T + 3 * T + 3 * I + (central ? 2 * 3 * T : 0));

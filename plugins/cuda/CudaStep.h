@@ -1,12 +1,14 @@
 #pragma once
 /// The GPU step, chosen in one place: `<CudaStep/>` in the root node runs the whole step of every
 /// body on a CUDA device (docs/design.md, section 4.7): TLEDForceField's element kernels on
-/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h, relaxed by its ViscoelasticProny
-/// series as TLEDForceField relaxes it, the states on the device), then a node kernel that sums each
-/// node's element forces (and the follower loads of SurfacePressure's faces, a face kernel) in a
-/// fixed order, adds ConstantForce (on its load curve) and gravity, integrates with
-/// SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the axes of FixedConstraint and
-/// PrescribedDisplacement where they hold them, in float or double. A component it cannot run is
+/// tetrahedra and hexahedra (every built-in law, DeviceLaws.h, one material or one per mesh group
+/// with groupMaterials, fibre directions per material or per element with fibreArray and
+/// fibreArray2, relaxed by its ViscoelasticProny series as TLEDForceField relaxes it, the states on
+/// the device), then a node kernel that sums each node's element forces (and the follower loads of
+/// SurfacePressure's faces, a face kernel) in a fixed order, adds ConstantForce (on its load curve)
+/// and gravity, integrates with SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the
+/// axes of FixedConstraint and PrescribedDisplacement where they hold them, in float or double. A
+/// component it cannot run is
 /// a located error naming it; no device is a located error too (exit 2): it never falls back to
 /// the host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
 /// The state stays on the device: the host queues the steps without waiting for them, and x and v

@@ -1,21 +1,20 @@
 #pragma once
 /// The device step on the CPU: the kernel bodies of StepKernels.h called in loops, one call per
 /// element or node, over "device" arrays that are host vectors uploaded (copied) from the same
-/// StepArraysHost the GPU path copies to the device. Slow (no vectorisation, one thread): for tests.
+/// StepArraysHost the GPU path copies to the device, the element kernels of each material group
+/// over its element list as the GPU launches them. Slow (no vectorisation, one thread): for tests.
 #include "StepRunner.h"
 #include "fascia/cuda/StepKernels.h"
 
 namespace fascia::cuda {
 
-template <class Law, class T>
+template <class T>
 class EmulatedRunner final : public StepRunner {
 public:
-    EmulatedRunner(const StepSetup& s, const Law& law) : m_dev(toArrays<T>(s)), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
-        m_p.law = law;
-        m_p.J0 = static_cast<T>(s.J0);
-        m_p.a0 = {T(s.a0.x), T(s.a0.y), T(s.a0.z)};
-        m_p.b0 = {T(s.b0.x), T(s.b0.y), T(s.b0.z)};
-        m_p.prony = pronyParams<T>(s);
+    explicit EmulatedRunner(const StepSetup& s) : m_dev(toArrays<T>(s)), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
+        forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
+            m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>>>(s, g, law));
+        });
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
@@ -41,20 +40,15 @@ public:
     void wait() override {}
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();
-        if (m_p.prony.series > 0) {
-            for (int e = 0; e < d.nTets; ++e) tetForces<true>(d, m_p, e);
-            for (int e = 0; e < d.nHexes; ++e) hexForces<true>(d, m_p, e);
-            facePass(d);
-            return;
-        }
-        for (int e = 0; e < d.nTets; ++e) tetForces(d, m_p, e);
-        for (int e = 0; e < d.nHexes; ++e) hexForces(d, m_p, e);
-        facePass(d);
+        for (const auto& pass : m_passes) pass->run(d);
+        for (int k = 0; k < d.nTris + d.nQuads; ++k) faceForces(d, m_q, k);
     }
     void setPressures(const FaceParams<double>& q) override {
         for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
     }
-    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override { setCoefficients(m_p.prony, A, B); }
+    void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override {
+        for (const auto& pass : m_passes) setCoefficients(pass->prony(), A, B);
+    }
     void setTargets(const std::vector<double>& tu, const std::vector<double>& tv) override {
         m_dev.tu.assign(tu.begin(), tu.end());
         m_dev.tv.assign(tv.begin(), tv.end());
@@ -79,13 +73,41 @@ public:
     }
 
 private:
-    void facePass(const StepArrays<T>& d) {
-        for (int k = 0; k < d.nTris + d.nQuads; ++k) faceForces(d, m_q, k);
-    }
-    StepArraysHost<T> m_dev;
-    FaceParams<T> m_q;  ///< the "device" copy
+    /// The element kernels of one material group, whatever its law.
+    struct Pass {
+        virtual ~Pass() = default;
+        virtual void run(const StepArrays<T>& d) = 0;
+        virtual PronyParams<T>& prony() = 0;
+    };
+    /// Those of a group of law Law: the kernel bodies called over the group's element lists (every
+    /// element with one group), relaxed with Prony series, with fibres per element where the setup
+    /// has them and the law reads one (the kernels CudaRunner.cu launches).
+    template <class Law>
+    struct LawPass final : Pass {
+        LawPass(const StepSetup& s, const StepSetup::Group& g, const Law& law)
+            : p(elementParams<T>(s, g, law)), listed(s.groups.size() > 1), tets(g.tets), hexes(g.hexes),
+              fibres(s.fibresPerElement && (detail::Uses<Law>::i4 || detail::Uses<Law>::i6)) {}
+        void run(const StepArrays<T>& d) override {
+            if (p.prony.series > 0) fibres ? loop<true, true>(d) : loop<true, false>(d);
+            else fibres ? loop<false, true>(d) : loop<false, false>(d);
+        }
+        PronyParams<T>& prony() override { return p.prony; }
+        /// one call per element as one thread per element: thread k takes element k, or the k-th of the list
+        template <bool Relaxed, bool PerElementFibres>
+        void loop(const StepArrays<T>& d) const {
+            const int nT = listed ? static_cast<int>(tets.size()) : d.nTets, nH = listed ? static_cast<int>(hexes.size()) : d.nHexes;
+            for (int k = 0; k < nT; ++k) tetForces<Relaxed, PerElementFibres>(d, p, listed ? tets[static_cast<size_t>(k)] : k);
+            for (int k = 0; k < nH; ++k) hexForces<Relaxed, PerElementFibres>(d, p, listed ? hexes[static_cast<size_t>(k)] : k);
+        }
+        ElementParams<Law, T> p;
+        bool listed;
+        std::vector<int> tets, hexes;
+        bool fibres;
+    };
+    StepArraysHost<T> m_dev;  ///< the "device" copy
+    FaceParams<T> m_q;        ///< the pressures of the step (setPressures)
     bool m_central;           ///< CentralDifference, else SemiImplicitEuler
-    ElementParams<Law, T> m_p;
+    std::vector<std::unique_ptr<Pass>> m_passes;  ///< one per material group (StepSetup::groups)
 };
 
 } // namespace fascia::cuda

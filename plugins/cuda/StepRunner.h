@@ -2,6 +2,7 @@
 /// One device step's data and launches: on a GPU (CudaRunner.cu) or emulated on the CPU
 /// (EmulatedRunner.h), both built from the same StepSetup and its StepArraysHost, so the emulation
 /// checks the layout, the indexing and the host-side setup the GPU runs.
+#include "DeviceLaws.h"
 #include "StepSetup.h"
 
 #include <memory>
@@ -24,10 +25,10 @@ public:
     /// The Prony states (StepArrays Y, then hY), as doubles: down and up (checkpoints).
     virtual void getPronyStates(std::vector<double>& Y) = 0;
     virtual void setPronyStates(const std::vector<double>& Y) = 0;
-    /// The element kernels over every tetrahedron and every hexahedron, and the face kernel over the
-    /// faces under pressure (launched; the GPU runs them
-    /// in order with the rest, and the host does not wait; each advances its Prony states,
-    /// StepArrays Y, once).
+    /// The element kernels over every tetrahedron and every hexahedron, those of each material
+    /// group over its elements, then the face kernel over the faces under pressure (launched; the
+    /// GPU runs them in order with the rest, and the host does not wait; each advances its Prony
+    /// states, StepArrays Y, once).
     virtual void elementPass() = 0;
     /// The coefficients A_i, B_i of the Prony series for the next element passes (TLED eq. (30)),
     /// term by term, the series in order (pronyCoefficients); until the first call the series relax
@@ -52,7 +53,22 @@ public:
 /// Which scalar the device step computes in.
 enum class Precision { Double, Float };
 
-/// The emulated runner of s's law (s.material in DeviceMaterials) in precision p.
+/// f(law, g) for each material group g of s, with its law as the element kernels take it (g.material
+/// a materials::Material<Law> of DeviceMaterials); any other material is a located error naming it
+/// (buildStepSetup refuses it first). The runners build their element passes, one per group, so.
+template <class F>
+void forEachGroupLaw(const StepSetup& s, F&& f) {
+    for (const StepSetup::Group& g : s.groups)
+        selectDeviceLaw(g.material, [&](auto tag, const materials::BaseMaterial* m) {
+            using Law = typename decltype(tag)::type;
+            if constexpr (std::is_same_v<Law, elements::GenericLaw>)
+                m->fail("the material " + m->className() + " is not on the GPU step (it runs " + deviceLawNames() + ")");
+            else
+                f(elements::lawOf<Law>(m), g);
+        });
+}
+
+/// The emulated runner of s's material groups (their laws in DeviceMaterials) in precision p.
 std::unique_ptr<StepRunner> makeEmulatedRunner(const StepSetup& s, Precision p);
 
 /// The same on the GPU, threads per block `block`. Throws a core::Error naming the CUDA error when

@@ -1,6 +1,7 @@
 #include "StepSetup.h"
 
 #include "DeviceLaws.h"
+#include "fascia/elements/FibreField.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/RelaxationSplit.h"
@@ -26,6 +27,14 @@ const P* paramOf(const core::Component& c, const std::string& name) {
            {"remove CudaStep to run this scene on the CPU"});
 }
 
+/// The same located at c's parameter p.
+[[noreturn]] void unsupported(const core::Component& c, const core::BaseParam& p, const std::string& what) {
+    c.fail(p,
+           what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
+                  "fallback to the host)",
+           {"remove CudaStep to run this scene on the CPU"});
+}
+
 /// The integrator and its parameters: SemiImplicitEuler or CentralDifference.
 void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
     if (integ.className() == "CentralDifference") s.scheme = StepSetup::Scheme::CentralDifference;
@@ -37,8 +46,9 @@ void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
 
 /// The Prony series beside the TLED force field, as TLEDForceField takes them (TLEDForceField.cpp
 /// init): every ViscoelasticProny of its node in order, each part relaxed by one series at most,
-/// the parts a series relaxes stress-free at rest (materials/RelaxationSplit.h, a located error at
-/// the series' apply otherwise), s ln J moved between the parts when a series relaxes one alone.
+/// the parts a series relaxes stress-free at rest for every material group (materials/
+/// RelaxationSplit.h, a located error at the series' apply otherwise), s ln J of each group's
+/// material moved between the parts when a series relaxes one alone.
 void readSeries(const core::BaseForceField& ff, StepSetup& s) {
     if (!ff.node()) return;
     for (const core::Component* c : ff.node()->findAllLocal<core::Component>()) {
@@ -56,39 +66,121 @@ void readSeries(const core::BaseForceField& ff, StepSetup& s) {
         s.series.push_back(x);
     }
     if (s.series.empty()) return;
-    const materials::RelaxationSplit split = materials::relaxationSplit(*s.material, s.J0);
     bool onePartAlone = false;
-    for (const StepSetup::Series& x : s.series) {
-        const std::string err = materials::relaxationRestError(split, x.iso, x.vol, s.material->className() + " '" + s.material->name() + "'");
-        if (!err.empty()) x.prony->failApply(err);
-        onePartAlone |= x.iso != x.vol;
+    for (const StepSetup::Series& x : s.series) onePartAlone |= x.iso != x.vol;
+    for (StepSetup::Group& g : s.groups) {
+        const materials::RelaxationSplit split = materials::relaxationSplit(*g.material, s.J0);
+        for (const StepSetup::Series& x : s.series) {
+            const std::string err = materials::relaxationRestError(split, x.iso, x.vol, g.material->className() + " '" + g.material->name() + "'");
+            if (!err.empty()) x.prony->failApply(err);
+        }
+        g.restShift = onePartAlone ? split.shift : 0.0;
     }
-    s.restShift = onePartAlone ? split.shift : 0.0;
 }
 
-/// The material and the options of the TLED force field, each checked against what the device
-/// step runs.
-void readTLED(const core::BaseForceField& ff, StepSetup& s) {
+/// The mesh TLEDForceField takes its elements, groups and cell arrays from (TLEDForceField.cpp
+/// init): its `mesh`, else, without tetrahedra or hexahedra given, the mesh source in its context;
+/// null for elements given as lists.
+const MeshData* meshOf(const core::BaseForceField& ff) {
+    if (const auto* m = paramOf<core::Param<MeshData>>(ff, "mesh"); m && m->isSet()) return &m->get();
+    for (const char* name : {"tetrahedra", "hexahedra"})
+        if (const auto* p = ff.findParam(name); p && p->isSet()) return nullptr;
+    const auto* source = ff.node() ? ff.node()->findInContext<core::BaseTopology>() : nullptr;
+    return source ? &source->meshData() : nullptr;
+}
+
+/// The material of each element and the groups of elements by material, in order of first
+/// appearance (tetrahedra, then hexahedra), from TLEDForceField's material and groupMaterials as it
+/// assigns them (elements::assignMaterials, TLEDElements.cpp precompute); a material that is not a
+/// law of DeviceLaws.h is a located error naming it. Returns the materials per cell (tetrahedra,
+/// then hexahedra).
+std::vector<const materials::BaseMaterial*> readGroups(const core::BaseForceField& ff, const MeshData* mesh, size_t nT, size_t nH,
+                                                       StepSetup& s) {
     const auto* groups = paramOf<core::Param<elements::GroupMaterialList>>(ff, "groupMaterials");
     const auto* link = paramOf<core::Link<materials::BaseMaterial>>(ff, "material");
     if (!groups || !link) unsupported(ff, "this TLEDForceField (its parameters are not the ones the device step knows)");
-    if (groups->isSet()) unsupported(ff, "groupMaterials (materials per mesh group)");
-    for (const char* name : {"fibreArray", "fibreArray2"})
-        if (const auto* p = ff.findParam(name); p && p->isSet()) unsupported(ff, std::string(name) + " (fibre directions per element)");
+    const elements::MaterialAssignment assigned =
+        elements::assignMaterials(ff, *groups, elements::defaultMaterial(ff, *link, *groups), mesh, nT, nH);
+    std::vector<const materials::BaseMaterial*> cell(assigned.tetrahedra.begin(), assigned.tetrahedra.end());
+    cell.insert(cell.end(), assigned.hexahedra.begin(), assigned.hexahedra.end());
+    const auto groupOf = [&](const materials::BaseMaterial* m) {
+        for (size_t g = 0; g < s.groups.size(); ++g)
+            if (s.groups[g].material == m) return g;
+        const bool onDevice = selectDeviceLaw(m, [](auto tag, const materials::BaseMaterial*) {
+            return !std::is_same_v<typename decltype(tag)::type, elements::GenericLaw>;
+        });
+        const std::string laws = " (the device step runs " + deviceLawNames() + ")";
+        // a group's material: at the groupMaterials that names it; the force field's one material: at the material
+        if (!onDevice && groups->isSet() && m != link->get())
+            unsupported(ff, *groups, "groupMaterials: the material " + m->className() + " '" + m->name() + "'" + laws);
+        if (!onDevice) unsupported(*m, "the material " + m->className() + laws);
+        StepSetup::Group g;
+        g.material = m;
+        for (int w = 0; w < 2; ++w)
+            if (const Vec3* d = m->fibreDirection(w)) {
+                const Vec3 n = *d / d->norm();  // (as TLEDElements.cpp and elements/FibreField.cpp)
+                (w == 0 ? g.a0 : g.b0) = elements::Vec33<double>{n[0], n[1], n[2]};
+            }
+        s.groups.push_back(g);
+        return s.groups.size() - 1;
+    };
+    for (size_t c = 0; c < cell.size(); ++c) {
+        StepSetup::Group& g = s.groups[groupOf(cell[c])];
+        if (c < nT) g.tets.push_back(static_cast<int>(c));
+        else g.hexes.push_back(static_cast<int>(c - nT));
+    }
+    if (s.groups.size() == 1) {
+        s.groups[0].tets.clear();  // one material: its kernels run over every element, with no list
+        s.groups[0].hexes.clear();
+    }
+    return cell;
+}
+
+/// The fibre directions per element from TLEDForceField's fibreArray and fibreArray2, as it
+/// resolves them (elements::resolveFibres: unit length, the material's own where a direction has no
+/// array), into the rows of StepArrays fa, fb, hfa, hfb; nothing without an array (each group's
+/// material then gives its elements' directions, StepSetup::Group a0, b0).
+void readFibres(const core::BaseForceField& ff, const MeshData* mesh, const std::vector<const materials::BaseMaterial*>& cell, size_t nT,
+                StepSetup& s) {
+    elements::FibreField field[2];
+    for (int w = 0; w < 2; ++w) {
+        const auto* array = paramOf<core::Param<std::string>>(ff, w == 0 ? "fibreArray" : "fibreArray2");
+        if (!array) unsupported(ff, "this TLEDForceField (its parameters are not the ones the device step knows)");
+        const unsigned bit = w == 0 ? materials::BaseMaterial::UsesI4 : materials::BaseMaterial::UsesI6;
+        // (a direction no material reads: TLEDForceField warned about its array already)
+        if (std::any_of(cell.begin(), cell.end(), [&](const materials::BaseMaterial* m) { return (m->uses() & bit) != 0; }))
+            field[w] = elements::resolveFibres(ff, w, *array, mesh, cell, nT);
+    }
+    s.fibresPerElement = field[0].perElement || field[1].perElement;
+    if (!s.fibresPerElement) return;
+    const size_t nH = cell.size() - nT;
+    for (int w = 0; w < 2; ++w) {
+        if (!field[w].used) continue;
+        std::vector<double>& t = w == 0 ? s.fa : s.fb;
+        std::vector<double>& h = w == 0 ? s.hfa : s.hfb;
+        t.assign(3 * nT, 0.0);
+        h.assign(3 * nH, 0.0);
+        for (size_t c = 0; c < cell.size(); ++c) {
+            // (a cell whose material does not read this direction: (1 0 0) or (0 1 0), never read)
+            const Vec3 d = field[w].dir[c] == Vec3::Zero() ? Vec3(w == 0 ? 1 : 0, w == 0 ? 0 : 1, 0) : field[w].dir[c];
+            for (size_t i = 0; i < 3; ++i) {
+                if (c < nT) t[i * nT + c] = d[static_cast<Eigen::Index>(i)];
+                else h[i * nH + c - nT] = d[static_cast<Eigen::Index>(i)];
+            }
+        }
+    }
+}
+
+/// The materials and the options of the TLED force field, each checked against what the device
+/// step runs: a material per group (groupMaterials) or one for all, fibre directions per material
+/// or per element (fibreArray, fibreArray2), the Prony series.
+void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
     if (const auto* k = paramOf<core::Param<double>>(ff, "hourglassStiffness")) s.hourglass = k->get();
-    const materials::BaseMaterial* m = elements::defaultMaterial(ff, *link, *groups);
-    if (!m) unsupported(ff, "a TLEDForceField without a material");
-    const bool onDevice = selectDeviceLaw(m, [](auto tag, const materials::BaseMaterial*) {
-        return !std::is_same_v<typename decltype(tag)::type, elements::GenericLaw>;
-    });
-    if (!onDevice) unsupported(*m, "the material " + m->className() + " (the device step runs " + deviceLawNames() + ")");
-    s.material = m;
-    for (int w = 0; w < 2; ++w)
-        if (const Vec3* d = m->fibreDirection(w)) {
-            const Vec3 n = d->normalized();
-            (w == 0 ? s.a0 : s.b0) = elements::Vec33<double>{n[0], n[1], n[2]};
-        }
+    const size_t nT = ff.tetrahedra() ? ff.tetrahedra()->size() : 0, nH = ff.hexahedra() ? ff.hexahedra()->size() : 0;
+    const MeshData* mesh = meshOf(ff);
+    const std::vector<const materials::BaseMaterial*> cell = readGroups(ff, mesh, nT, nH, s);
+    readFibres(ff, mesh, cell, nT, s);
     readSeries(ff, s);
 }
 
@@ -156,9 +248,13 @@ void tetGeometry(const core::BaseForceField& ff, const Positions& X, const Tetra
 }
 
 /// Rest geometry of the hexahedra: the uniform-strain dN_a/dX, volumes, hourglass vectors c_q and
-/// stiffnesses K, as TLEDForceField computes them (plugins/tled/TLEDElements.cpp).
+/// stiffnesses K (of each element's material), as TLEDForceField computes them
+/// (plugins/tled/TLEDElements.cpp).
 void hexGeometry(const core::BaseForceField& ff, const Positions& X, const Hexahedra& hexes, StepSetup& s) {
     const size_t n = hexes.size();
+    std::vector<const materials::BaseMaterial*> material(n, n > 0 ? s.groups.front().material : nullptr);
+    for (const StepSetup::Group& g : s.groups)
+        for (int e : g.hexes) material[static_cast<size_t>(e)] = g.material;
     s.hex.resize(8 * n);
     s.hdN.resize(24 * n);
     s.hgC.resize(12 * n);
@@ -178,7 +274,7 @@ void hexGeometry(const core::BaseForceField& ff, const Positions& X, const Hexah
         for (size_t r = 0; r < 24; ++r) s.hdN[r * n + e] = dN[r];
         for (size_t r = 0; r < 12; ++r) s.hgC[r * n + e] = c[r];
         s.hvol[e] = std::abs(V);
-        s.hgK[e] = elements::hexHourglassStiffness(s.hourglass, *s.material, s.hvol[e], sumDN2);
+        s.hgK[e] = elements::hexHourglassStiffness(s.hourglass, *material[e], s.hvol[e], sumDN2);
     }
 }
 

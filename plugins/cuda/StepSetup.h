@@ -1,8 +1,10 @@
 #pragma once
 /// Host-side setup of the device step, shared by the GPU path and its CPU emulation: what a
 /// mechanical group holds, checked against what the device step can run, turned into the arrays
-/// of StepLayout.h (once, at init), and the per-step parameters (the node kernel's, the Prony
-/// series' coefficients).
+/// of StepLayout.h (once, at init): the material groups with their element lists and the fibre
+/// directions per element, resolved as TLEDForceField resolves them (elements/GroupMaterials.h,
+/// elements/FibreField.h); and the per-step parameters (the node kernel's, the Prony series'
+/// coefficients).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/materials/Material.h"
 #include "fascia/sim/LoadTerms.h"
@@ -36,10 +38,23 @@ struct StepSetup {
     std::vector<double> loadF;                  ///< their forces at c = 1, see StepArrays
     std::vector<std::uint32_t> hold;  ///< 3 per node, see StepArrays
     std::vector<int> targetAt;        ///< target j is axis targetAt[j] % 3 of node targetAt[j] / 3
-    const materials::BaseMaterial* material = nullptr;  ///< the elements' one material
+    /// The elements of one material (TLEDForceField's one material, or one of its groupMaterials),
+    /// which its law's element kernels run over.
+    struct Group {
+        const materials::BaseMaterial* material = nullptr;
+        /// its tetrahedra and hexahedra (indices of their kind, increasing); both empty when the
+        /// setup has this one group, whose kernels then run over every element with no list
+        std::vector<int> tets, hexes;
+        elements::Vec33<double> a0{1, 0, 0}, b0{0, 1, 0};  ///< the material's fibre directions (unit)
+        double restShift = 0;  ///< PronyParams::restShift of the material
+    };
+    std::vector<Group> groups;  ///< by material, in order of first appearance (tetrahedra, then hexahedra)
+    /// fibre directions per element (StepArrays fa, fb, hfa, hfb: row i at i n + e) from
+    /// TLEDForceField's fibreArray or fibreArray2; false: each group's a0, b0
+    bool fibresPerElement = false;
+    std::vector<double> fa, fb, hfa, hfb;
     double J0 = 0.4;
     double hourglass = 0;  ///< TLEDForceField's hourglassStiffness (kappa of the stiffnesses hgK)
-    elements::Vec33<double> a0{1, 0, 0}, b0{0, 1, 0};  ///< the material's fibre directions
     enum class Scheme { SemiImplicitEuler, CentralDifference } scheme = Scheme::SemiImplicitEuler;
     double damping = 0;                                ///< the integrator's alpha
     bool halfStepStart = true;                         ///< SemiImplicitEuler's leapfrog start
@@ -51,7 +66,6 @@ struct StepSetup {
         int terms = 0;
     };
     std::vector<Series> series;  ///< in the order TLEDForceField takes them (its node's order)
-    double restShift = 0;        ///< PronyParams::restShift
     /// the terms of all series (the states' k, StepArrays Y)
     int pronyTerms() const {
         int n = 0;
@@ -61,8 +75,9 @@ struct StepSetup {
 };
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
-/// tetrahedra and hexahedra with one built-in law of DeviceLaws.h and the ViscoelasticProny series
-/// of its node, FixedConstraint, PrescribedDisplacement, ConstantForce (at most kMaxLoads with a load curve), the masses,
+/// tetrahedra and hexahedra with a built-in law of DeviceLaws.h per material, its groupMaterials and
+/// fibre arrays, and the ViscoelasticProny series of its node, FixedConstraint,
+/// PrescribedDisplacement, ConstantForce (at most kMaxLoads with a load curve), the masses,
 /// SemiImplicitEuler or CentralDifference) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
 /// own. The slot lists are built here: node n's (element, corner) pairs by element, then corner.
@@ -79,6 +94,7 @@ struct StepArraysHost {
     std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du;
+    std::vector<T> fa, fb, hfa, hfb;  ///< the fibre directions per element (empty without fibre arrays)
     int nLoads = 0;
     int nTris = 0, nQuads = 0;
     std::vector<int> tri, quad, triLoad, quadLoad;
@@ -102,6 +118,10 @@ struct StepArraysHost {
         d.hvol = hvol.data();
         d.hgK = hgK.data();
         d.hef = hef.data();
+        d.fa = fa.data();
+        d.fb = fb.data();
+        d.hfa = hfa.data();
+        d.hfb = hfb.data();
         d.Y = Y.data();
         d.hY = hY.data();
         d.slotStart = slotStart.data();
@@ -152,6 +172,10 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.hvol = conv(s.hvol);
     h.hgK = conv(s.hgK);
     h.hef.assign(24 * static_cast<size_t>(s.nHexes), T(0));
+    h.fa = conv(s.fa);
+    h.fb = conv(s.fb);
+    h.hfa = conv(s.hfa);
+    h.hfb = conv(s.hfb);
     h.Y.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nTets), T(0));
     h.hY.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nHexes), T(0));
     h.ext = conv(s.ext);
@@ -248,9 +272,10 @@ NodeParams<T> nodeParamsIn(const NodeParams<double>& p) {
 /// step dt (viscoelastic/HistoryClock.h stepCoefficients), term by term, the series in order.
 void pronyCoefficients(const StepSetup& s, double elapsed, double dt, std::vector<double>& A, std::vector<double>& B);
 
-/// The element kernels' Prony series of s in T, with no relaxation yet (A = B = 0: setCoefficients).
+/// The element kernels' Prony series of s in T for the material group g (its restShift), with no
+/// relaxation yet (A = B = 0: setCoefficients).
 template <class T>
-PronyParams<T> pronyParams(const StepSetup& s) {
+PronyParams<T> pronyParams(const StepSetup& s, const StepSetup::Group& g) {
     PronyParams<T> q;
     q.series = static_cast<int>(s.series.size());
     for (size_t i = 0; i < s.series.size(); ++i) {
@@ -258,8 +283,16 @@ PronyParams<T> pronyParams(const StepSetup& s) {
         q.iso[i] = s.series[i].iso;
         q.vol[i] = s.series[i].vol;
     }
-    q.restShift = static_cast<T>(s.restShift);
+    q.restShift = static_cast<T>(g.restShift);
     return q;
+}
+
+/// The element kernels' parameters of s's material group g in T, its law `law` (g.material's).
+template <class T, class Law>
+ElementParams<Law, T> elementParams(const StepSetup& s, const StepSetup::Group& g, const Law& law) {
+    ElementParams<Law, T> p{law, static_cast<T>(s.J0), {T(g.a0.x), T(g.a0.y), T(g.a0.z)}, {T(g.b0.x), T(g.b0.y), T(g.b0.z)}, {}};
+    p.prony = pronyParams<T>(s, g);
+    return p;
 }
 
 /// Sets q's coefficients from A and B as pronyCoefficients gives them (term by term, the series in order).

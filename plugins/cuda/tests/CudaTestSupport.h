@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cmath>
 #include <memory>
@@ -63,22 +64,26 @@ enum class Mesh { Tets, Hexes, Mixed };
 
 inline std::string meshName(Mesh m) { return m == Mesh::Tets ? "tetrahedra" : m == Mesh::Hexes ? "hexahedra" : "mixed"; }
 
-/// The TLEDForceField attributes of the mixed mesh: its elements given explicitly, in the grid's
-/// node numbering (node i + 3 (j + 3 k) at 0.01 (i, j, k)); each tetrahedron positively oriented.
-inline std::string mixedElements() {
+/// The cantilever's elements in the grid's node numbering (node i + 3 (j + 3 k) at 0.01 (i, j, k)):
+/// per cell (i, j, k), by k, then j, then i, either 6 tetrahedra (each positively oriented) or one
+/// hexahedron (VTK order); hexahedra in every cell, in the bottom layer (k = 0) only, or nowhere.
+/// cell(i, j, k) is called with the grid cell of each element as it is added.
+template <class Cell>
+void cantileverElements(bool hexAll, bool hexBottom, std::vector<std::array<int, 4>>& tets, std::vector<std::array<int, 8>>& hexes,
+                        Cell&& cell) {
     const auto id = [](int i, int j, int k) { return i + 3 * (j + 3 * k); };
     static const int T[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
-    std::string tets, hexes;
+    static const int xi[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     for (int k = 0; k < 3; ++k)
         for (int j = 0; j < 2; ++j)
             for (int i = 0; i < 2; ++i) {
                 const int c[8] = {id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
                                   id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-                if (k == 0) {
-                    for (int a : c) hexes += std::to_string(a) + " ";
+                if (hexAll || (hexBottom && k == 0)) {
+                    hexes.push_back({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
+                    cell(i, j, k);
                     continue;
                 }
-                const int xi[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
                 for (const auto& t : T) {
                     int q[4] = {t[0], t[1], t[2], t[3]};
                     // orientation from the unit cell's corners: det(p1 - p0, p2 - p0, p3 - p0) > 0
@@ -86,29 +91,56 @@ inline std::string mixedElements() {
                     const int det = d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
                                     d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0));
                     if (det < 0) std::swap(q[1], q[2]);
-                    for (int a : q) tets += std::to_string(c[a]) + " ";
+                    tets.push_back({c[q[0]], c[q[1]], c[q[2]], c[q[3]]});
+                    cell(i, j, k);
                 }
             }
+}
+
+/// The TLEDForceField attributes of the mixed mesh: its elements given explicitly (hexahedra in the
+/// bottom layer of cells, tetrahedra above).
+inline std::string mixedElements() {
+    std::vector<std::array<int, 4>> t4;
+    std::vector<std::array<int, 8>> h8;
+    cantileverElements(false, true, t4, h8, [](int, int, int) {});
+    std::string tets, hexes;
+    for (const auto& t : t4)
+        for (int a : t) tets += std::to_string(a) + " ";
+    for (const auto& h : h8)
+        for (int a : h) hexes += std::to_string(a) + " ";
     return " tetrahedra=\"" + tets + "\" hexahedra=\"" + hexes + "\"";
 }
 
-/// The cantilever scene; `root` goes into the root node (a CudaStep), `body` into the body's node.
-inline std::string scene(const Law& law, const std::string& root, const std::string& body = "",
-                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>", Mesh mesh = Mesh::Tets) {
+/// The parts of the cantilever scene that differ between cases: the mesh source, the material
+/// elements and the TLEDForceField's attributes beyond its name and J0.
+struct BodyParts {
+    std::string mesh, materials, ff;
+};
+
+/// The cantilever scene of these parts; `root` goes into the root node (a CudaStep), `body` into the
+/// body's node.
+inline std::string scene(const BodyParts& parts, const std::string& root, const std::string& body = "",
+                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>") {
     return "<Node name=\"root\" dt=\"2e-5\" gravity=\"0 -9.81 0\" gravityCurve=\"linear 0 1 0.004 0.5\">\n" + root +
-           "\n  <Node name=\"body\">\n"
-           "    <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"" +
-           std::string(mesh == Mesh::Tets ? "tetrahedra6" : "hexahedra") +
-           "\"/>\n"
+           "\n  <Node name=\"body\">\n    " + parts.mesh +
+           "\n"
            "    <MechanicalObject name=\"mo\"/>\n"
            "    <LumpedMass density=\"1000\"/>\n    " +
-           integrator + "\n    " + law.element + "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"" +
-           (mesh == Mesh::Mixed ? mixedElements() : std::string()) +
+           integrator + "\n    " + parts.materials + "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"" + parts.ff +
            "/>\n"
            "    <FixedConstraint name=\"clamp\" indices=\"0 1 2 3 4 5 6 7 8\"/>\n"
            "    <FixedConstraint name=\"roller\" indices=\"12 13\" directions=\"1 0 0\"/>\n"
            "    <ConstantForce name=\"pull\" indices=\"27 28 29 30 31 32 33 34 35\" force=\"0.002 0.001 0.004\"/>\n" +
            body + "\n  </Node>\n</Node>\n";
+}
+
+/// The cantilever scene (a 2 x 2 x 3 cell grid, fixed at z = 0, pulled at z = 0.03, under gravity)
+/// with one material, the law's.
+inline std::string scene(const Law& law, const std::string& root, const std::string& body = "",
+                         const std::string& integrator = "<SemiImplicitEuler damping=\"5\"/>", Mesh mesh = Mesh::Tets) {
+    const std::string grid = "<GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"" +
+                             std::string(mesh == Mesh::Tets ? "tetrahedra6" : "hexahedra") + "\"/>";
+    return scene(BodyParts{grid, law.element, mesh == Mesh::Mixed ? mixedElements() : std::string()}, root, body, integrator);
 }
 
 /// Deforms the state: x = A X + a jitter (seeded), v = 0.
@@ -158,9 +190,10 @@ struct ForceProbe {
     cuda::StepSetup setup;
 };
 
-inline ForceProbe probeForces(const Law& law, double scale, Mesh mesh = Mesh::Tets) {
+/// The same for a scene's XML.
+inline ForceProbe probeForces(const std::string& xml, double scale) {
     ForceProbe p;
-    p.sim = core::Simulation::fromString(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh));
+    p.sim = core::Simulation::fromString(xml);
     p.sim->init();
     auto& mo = p.sim->state("mo");
     deform(mo, scale);
@@ -171,6 +204,10 @@ inline ForceProbe probeForces(const Law& law, double scale, Mesh mesh = Mesh::Te
     stateArrays(mo, p.u, p.v);
     p.setup = cuda::buildStepSetup(*ff, p.sim->groups().at(0));
     return p;
+}
+
+inline ForceProbe probeForces(const Law& law, double scale, Mesh mesh = Mesh::Tets) {
+    return probeForces(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh), scale);
 }
 
 /// Positions after `steps` steps of the scene with `root` in its root node.
@@ -228,10 +265,11 @@ struct Pair {
     double err = 0, moved = 0;
 };
 
-inline Pair runBoth(const Law& law, const std::string& body, const std::string& integrator, Mesh mesh, const std::string& root, int steps) {
+/// The same for the scene of `parts`.
+inline Pair runBoth(const BodyParts& parts, const std::string& body, const std::string& integrator, const std::string& root, int steps) {
     Pair r;
     for (int k = 0; k < 2; ++k) {
-        auto sim = core::Simulation::fromString(scene(law, k == 0 ? "" : root, body, integrator, mesh));
+        auto sim = core::Simulation::fromString(scene(parts, k == 0 ? "" : root, body, integrator));
         for (int s = 0; s < steps; ++s) sim->step();
         (k == 0 ? r.cpu : r.device) = sim->state("mo").x();
         r.rest = sim->state("mo").x0();
@@ -239,6 +277,12 @@ inline Pair runBoth(const Law& law, const std::string& body, const std::string& 
     r.err = displacementError(r.device, r.cpu, r.rest);
     for (size_t i = 0; i < r.cpu.size(); ++i) r.moved = std::max(r.moved, (r.cpu[i] - r.rest[i]).norm());
     return r;
+}
+
+inline Pair runBoth(const Law& law, const std::string& body, const std::string& integrator, Mesh mesh, const std::string& root, int steps) {
+    const std::string grid = "<GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"" +
+                             std::string(mesh == Mesh::Tets ? "tetrahedra6" : "hexahedra") + "\"/>";
+    return runBoth(BodyParts{grid, law.element, mesh == Mesh::Mixed ? mixedElements() : std::string()}, body, integrator, root, steps);
 }
 
 } // namespace cudatest

@@ -2,6 +2,7 @@
 // emulation test checks its kernel bodies on the CPU. Where no device is usable every case exits 77,
 // which ctest reports as skipped (SKIP_RETURN_CODE, plugins/cuda/CMakeLists.txt), never as passed.
 #include "CudaTestSupport.h"
+#include "GroupCases.h"
 #include "LoadCases.h"
 #include "ResidencyCases.h"
 
@@ -191,4 +192,42 @@ TEST_CASE("CudaStep on the GPU applies SurfacePressure's follower load as the CP
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
     loads::pressuresFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("The GPU element kernels give TLED's forces with materials per group and fibres per element", "[CudaStep][groupMaterials]") {
+    requireDevice();
+    groups::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+}
+
+TEST_CASE("CudaStep on the GPU follows TLEDForceField with materials per group and fibres per element over 1000 steps",
+          "[CudaStep][groupMaterials]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    groups::trajectoriesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("CudaStep on the GPU relaxes materials per group with fibres per element as TLEDForceField does",
+          "[CudaStep][groupMaterials][ViscoelasticProny]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    groups::relaxedGroupsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory of groups with fibre arrays for any block size", "[CudaStep][groupMaterials]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    const BodyParts parts = groups::groupParts(groups::groupCase("three groups with fibre arrays"), Mesh::Mixed);
+    const auto run = [&](int block) {
+        auto sim = core::Simulation::fromString(scene(parts, "<CudaStep precision=\"" + precision + "\" blockSize=\"" + std::to_string(block) + "\"/>"));
+        for (int s = 0; s < 200; ++s) sim->step();
+        return sim->state("mo").x();
+    };
+    const Positions a = run(256);
+    for (int block : {32, 96, 1024}) {
+        CAPTURE(block);
+        CHECK(run(block) == a);
+    }
 }

@@ -11,7 +11,11 @@
 ///     Prony series (ElementParams::prony; the kernels' Relaxed, a compile-time choice), between the
 ///     response and P: the rest shift -> S split into its isochoric and volumetric parts (TLED eq.
 ///     (10), secondPiola) -> Y_i = A_i R + B_i Y_i (TLED eq. (30), the element's own states
-///     advanced in place), S = Phi - sum_i Y_i (TLED eq. (24)) -> P = F S;
+///     advanced in place), S = Phi - sum_i Y_i (TLED eq. (24)) -> P = F S. The fibre directions
+///     (I4, I6, P) are those of the element's material group (ElementParams a0, b0), or its own
+///     from StepArrays fa, fb (the kernels' PerElementFibres, a compile-time choice, instantiated
+///     for the laws that read a fibre only); a runner launches them once per material group, with
+///     the group's law, over the group's element list (StepSetup::Group);
 ///   face kernel (a face under a SurfacePressure): its current edges from the rest ones and u ->
 ///     its follower load (fascia/elements/Pressure.h), written to its own slots;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
@@ -45,17 +49,40 @@ struct Uses {
                           i6 = (Law::uses & materials::BaseMaterial::UsesI6) != 0;
 };
 
+/// The fibre directions an element's stress reads (a0 of I4, b0 of I6): references to the group's,
+/// ElementParams a0 and b0, or to the element's own (the elastic kernels of uniform fibres then read
+/// the kernel's parameters as they did before fibres per element: the same registers).
+template <class T>
+struct Fibres {
+    const elements::Vec33<T>& a0;
+    const elements::Vec33<T>& b0;
+};
+
+/// The fibre directions of element e among the n of its kind: with PerElementFibres those of the
+/// arrays a, b (StepArrays fa, fb or hfa, hfb; row i at i n + e) that the law reads, loaded into own,
+/// else (and for a direction it does not read) the group's, p.a0 and p.b0.
+template <bool PerElementFibres, class Law, class T>
+FASCIA_HD FASCIA_INLINE Fibres<T> fibresOf(const ElementParams<Law, T>& p, const T* a, const T* b, int n, int e, elements::Vec33<T> (&own)[2]) {
+    if constexpr (PerElementFibres) {
+        if constexpr (Uses<Law>::i4) own[0] = elements::Vec33<T>{a[e], a[n + e], a[2 * n + e]};
+        if constexpr (Uses<Law>::i6) own[1] = elements::Vec33<T>{b[e], b[n + e], b[2 * n + e]};
+        return {Uses<Law>::i4 ? own[0] : p.a0, Uses<Law>::i6 ? own[1] : p.b0};
+    } else {
+        return {p.a0, p.b0};
+    }
+}
+
 /// The invariants of F (in) and the law's response to them (materials::evaluateLaw: HEML section
-/// 4.4 below J0) as the stress formulas read it.
+/// 4.4 below J0) as the stress formulas read it, with the fibre directions fib.
 template <class Law, class T>
-FASCIA_HD FASCIA_INLINE elements::Coefficients<T> response(const ElementParams<Law, T>& p, const elements::Mat33<T>& F,
+FASCIA_HD FASCIA_INLINE elements::Coefficients<T> response(const ElementParams<Law, T>& p, const Fibres<T>& fib, const elements::Mat33<T>& F,
                                                            materials::InvariantsT<T>& in) {
     const elements::Invariants3<T> iv = elements::invariants<Uses<Law>::i2>(F);
     in.I1 = iv.I1;
     in.I2 = iv.I2;
     in.J = iv.J;
-    if constexpr (Uses<Law>::i4) in.I4 = elements::fibreInvariant(F, p.a0);
-    if constexpr (Uses<Law>::i6) in.I6 = elements::fibreInvariant(F, p.b0);
+    if constexpr (Uses<Law>::i4) in.I4 = elements::fibreInvariant(F, fib.a0);
+    if constexpr (Uses<Law>::i6) in.I6 = elements::fibreInvariant(F, fib.b0);
     materials::ResponseT<T> r;
     materials::evaluateLaw(p.law, in, static_cast<double>(p.J0), r);
     return {r.dI1, r.dI2, r.dI4, r.dI6, r.dJiso, r.dJvol};
@@ -70,10 +97,11 @@ FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaled(const elements::Mat33<T>& P, T
 /// V P of an element of rest volume V at the deformation gradient F: the law's response and P
 /// (Tensor3.h firstPiola).
 template <class Law, class T>
-FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V) {
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law, T>& p, const Fibres<T>& fib, const elements::Mat33<T>& F,
+                                                        T V) {
     materials::InvariantsT<T> in;
-    const elements::Coefficients<T> c = response(p, F, in);
-    return scaled(elements::firstPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, c, p.a0, p.b0), V);
+    const elements::Coefficients<T> c = response(p, fib, F, in);
+    return scaled(elements::firstPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, c, fib.a0, fib.b0), V);
 }
 
 /// V P relaxed by the Prony series of p.prony (TLED eq. (24), (30)), as TLEDForceField's viscous
@@ -83,14 +111,14 @@ FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledStress(const ElementParams<Law,
 /// that order; P = F S (firstPiolaOf). Y: the states of the element kind (n elements), element e's
 /// term k component c at Y[(6 k + c) n + e] (StepLayout.h), advanced in place.
 template <class Law, class T>
-FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledRelaxedStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V, T* Y,
-                                                               int n, int e) {
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledRelaxedStress(const ElementParams<Law, T>& p, const Fibres<T>& fib, const elements::Mat33<T>& F,
+                                                               T V, T* Y, int n, int e) {
     materials::InvariantsT<T> in;
-    elements::Coefficients<T> c = response(p, F, in);
+    elements::Coefficients<T> c = response(p, fib, F, in);
     const PronyParams<T>& q = p.prony;
     if (q.restShift != T(0)) elements::restShift(c.dJiso, c.dJvol, in.J, q.restShift, p.J0);
     elements::Sym33<T> Si, Sv;
-    elements::secondPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, in.J, c, p.a0, p.b0, Si, Sv);
+    elements::secondPiola<Uses<Law>::i2, Uses<Law>::i4, Uses<Law>::i6>(F, in.I1, in.J, c, fib.a0, fib.b0, Si, Sv);
     const T si[6] = {Si.xx, Si.yy, Si.zz, Si.xy, Si.yz, Si.xz}, sv[6] = {Sv.xx, Sv.yy, Sv.zz, Sv.xy, Sv.yz, Sv.xz};
     T S[6];
     for (int i = 0; i < 6; ++i) S[i] = si[i] + sv[i];
@@ -108,21 +136,23 @@ FASCIA_HD FASCIA_INLINE elements::Mat33<T> scaledRelaxedStress(const ElementPara
 }
 
 /// V P of the element, relaxed by p.prony's series (Relaxed) or elastic (a compile-time choice: the
-/// elastic kernels carry none of the viscous path's registers). Y, n, e: element e's states among
-/// the n of its kind.
+/// elastic kernels carry none of the viscous path's registers), with the fibre directions fib. Y,
+/// n, e: element e's states among the n of its kind.
 template <bool Relaxed, class Law, class T>
-FASCIA_HD FASCIA_INLINE elements::Mat33<T> elementStress(const ElementParams<Law, T>& p, const elements::Mat33<T>& F, T V, T* Y, int n,
-                                                         int e) {
-    if constexpr (Relaxed) return scaledRelaxedStress(p, F, V, Y, n, e);
-    else return scaledStress(p, F, V);
+FASCIA_HD FASCIA_INLINE elements::Mat33<T> elementStress(const ElementParams<Law, T>& p, const Fibres<T>& fib, const elements::Mat33<T>& F,
+                                                         T V, T* Y, int n, int e) {
+    if constexpr (Relaxed) return scaledRelaxedStress(p, fib, F, V, Y, n, e);
+    else return scaledStress(p, fib, F, V);
 }
 
 } // namespace detail
 
-/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots); Relaxed: with the
-/// Prony series of p (p.prony.series > 0), its states advanced (a runner launches the relaxed
-/// kernels when the setup has series, the elastic ones otherwise).
-template <bool Relaxed = false, class Law, class T>
+/// The forces of tetrahedron e on its 4 corners, written to ef (its own slots), with the law of p
+/// (e's material group); Relaxed: with the Prony series of p (p.prony.series > 0), its states
+/// advanced (a runner launches the relaxed kernels when the setup has series, the elastic ones
+/// otherwise); PerElementFibres: the fibre directions of e from d.fa, d.fb (a runner launches these
+/// kernels when the setup has fibre arrays and the law reads a fibre).
+template <bool Relaxed = false, bool PerElementFibres = false, class Law, class T>
 FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
     const int n = d.nTets;
     elements::NodalBatch<4, 1, T> u;
@@ -130,7 +160,9 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
     T g[9];
     for (int r = 0; r < 9; ++r) g[r] = d.dN[r * n + e];
     const elements::NodeRows<1, T> dN{g};
-    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, elements::deformationGradientTet(u, dN, 0), d.vol[e], d.Y, n, e);
+    elements::Vec33<T> own[2];
+    const detail::Fibres<T> fib = detail::fibresOf<PerElementFibres>(p, d.fa, d.fb, n, e, own);
+    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, fib, elements::deformationGradientTet(u, dN, 0), d.vol[e], d.Y, n, e);
     T s0 = 0, s1 = 0, s2 = 0;
     T* out = d.ef + 12 * static_cast<size_t>(e);
     for (int a = 1; a < 4; ++a) {
@@ -148,8 +180,9 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
 }
 
 /// The forces of hexahedron e on its 8 corners (uniform strain with hourglass control,
-/// fascia/elements/Hourglass.h), written to hef (its own slots); Relaxed: as tetForces.
-template <bool Relaxed = false, class Law, class T>
+/// fascia/elements/Hourglass.h), written to hef (its own slots); Relaxed, PerElementFibres (from
+/// d.hfa, d.hfb): as tetForces.
+template <bool Relaxed = false, bool PerElementFibres = false, class Law, class T>
 FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
     const int n = d.nHexes;
     elements::NodalBatch<8, 1, T> u;
@@ -164,7 +197,9 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
     const elements::NodeRows<1, T> dN{g}, cq{c};
     const elements::Mat33<T> F = elements::deformationGradient(u, dN, 0);
     elements::hourglassModes(u, cq, 0, F, h);
-    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, F, d.hvol[e], d.hY, n, e);
+    elements::Vec33<T> own[2];
+    const detail::Fibres<T> fib = detail::fibresOf<PerElementFibres>(p, d.hfa, d.hfb, n, e, own);
+    const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, fib, F, d.hvol[e], d.hY, n, e);
     elements::NodalBatch<8, 1, T> f;
     elements::hexNodalForces(P, d.hgK[e], elements::NodeRows<1, T>{h}, cq, dN, 0, f);
     T* out = d.hef + 24 * static_cast<size_t>(e);

@@ -1,9 +1,11 @@
 #pragma once
 /// The data layout of the device step (docs/design.md, section 4.7): every array of the mesh as a
-/// plain pointer, structure of arrays over the whole mesh (the Prony states too), so that
-/// consecutive threads (elements, nodes) read consecutive addresses. The GPU path (CudaRunner.cu) and the CPU emulation
-/// (EmulatedRunner.h) both fill it from the same host arrays (StepArraysHost, StepSetup.h) and run the
-/// same kernel bodies over it (StepKernels.h).
+/// plain pointer, structure of arrays over the whole mesh (the Prony states and the fibre directions
+/// per element too), so that consecutive threads (elements, nodes) read consecutive addresses. The
+/// GPU path (CudaRunner.cu) and the CPU emulation (EmulatedRunner.h) both fill it from the same host
+/// arrays (StepArraysHost, StepSetup.h) and run the same kernel bodies over it (StepKernels.h). With
+/// materials per mesh group (TLEDForceField's groupMaterials) the element kernels of each group run
+/// over that group's element list (StepSetup::Group); each element still writes its own slots.
 #include "fascia/elements/Tensor3.h"
 
 #include <cstdint>
@@ -25,6 +27,12 @@ namespace fascia::cuda {
 ///   hgC[(3 q + i) nHexes + e]    hourglass vector c_q (q = 0..3)
 ///   hvol[e], hgK[e]              rest volume, hourglass stiffness K
 ///   hef[3 (8 e + a) + i]         the element's force on its corner a
+/// Fibre directions per element (TLEDForceField's fibreArray, fibreArray2: unit length, those of the
+/// element's material where its array is not given; empty when no array is given, and the element
+/// kernels then read the directions of the group's material, ElementParams):
+///   fa[i nTets + e], fb[i nTets + e]    a0, b0 of tetrahedron e (fb empty when no material reads b0,
+///                                       fa when none reads a0)
+///   hfa[i nHexes + e], hfb[i nHexes + e]  the same for hexahedron e
 /// Prony series (ViscoelasticProny beside the TLEDForceField, TLED eq. (24), (30); PronyParams),
 /// term k counting the terms of every series in order (term t of series s at k = the terms of the
 /// series before s + t), stress component c (xx yy zz xy yz xz):
@@ -73,6 +81,10 @@ struct StepArrays {
     const T* hvol = nullptr;
     const T* hgK = nullptr;
     T* hef = nullptr;
+    const T* fa = nullptr;
+    const T* fb = nullptr;
+    const T* hfa = nullptr;
+    const T* hfb = nullptr;
     T* Y = nullptr;
     T* hY = nullptr;
     int nTris = 0, nQuads = 0;
@@ -119,9 +131,10 @@ struct PronyParams {
     T restShift = 0;
 };
 
-/// What the element kernel needs besides the arrays: the law (by value, its parameters as the
-/// material holds them), J0, the fibre directions of the material (one per mesh) and its Prony
-/// series.
+/// What the element kernel needs besides the arrays, for one material group: the law (by value,
+/// its parameters as the material holds them), J0, the fibre directions of the material (those of
+/// every element of the group, unless given per element: StepArrays fa, fb) and the Prony series
+/// (with the group's restShift).
 template <class Law, class T>
 struct ElementParams {
     Law law;
