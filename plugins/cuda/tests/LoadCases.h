@@ -12,14 +12,14 @@ inline const std::string kCurvedForces =
     "<ConstantForce name=\"ramped\" indices=\"30 31 32\" force=\"0 0.003 -0.002\" curve=\"ramp 0.01\"/>"
     "<ConstantForce name=\"swung\" indices=\"20 21\" force=\"0.004 0 0.001\" curve=\"linear 0 0  0.005 1  0.015 -1\"/>";
 
-/// The curved loads follow the CPU over 1000 steps (with either integrator, tetrahedra and the
-/// mixed mesh), and they matter: without them the trajectory ends far away.
-inline void curvedForcesFollowTheCpu(const std::string& root, double tol) {
+/// The scene with the loads of `body` follows the CPU over 1000 steps (with either integrator,
+/// tetrahedra and the mixed mesh), and the loads matter: without them the trajectory ends far away.
+inline void followsTheCpu(const std::string& body, const std::string& root, double tol) {
     const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
     const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
     CAPTURE(integrator, meshName(mesh));
     const Law law = deviceLaw("NeoHookean");
-    const Pair r = runBoth(law, kCurvedForces, integrator, mesh, root, 1000);
+    const Pair r = runBoth(law, body, integrator, mesh, root, 1000);
     const Pair without = runBoth(law, "", integrator, mesh, root, 1000);
     const double apart = displacementError(without.device, r.cpu, r.rest);
     CAPTURE(sci(r.err), sci(apart));
@@ -29,6 +29,9 @@ inline void curvedForcesFollowTheCpu(const std::string& root, double tol) {
     CHECK(apart >= 0.05);
 }
 
+/// The curved ConstantForce loads follow the CPU.
+inline void curvedForcesFollowTheCpu(const std::string& root, double tol) { followsTheCpu(kCurvedForces, root, tol); }
+
 /// Two SurfacePressure components: a pressure on the free end (z = 0.03) growing over 5 ms, and a
 /// constant suction on the side x = 0.02 (triangles on the tetrahedral grid, quadrilaterals on the
 /// hexahedral one, which the mixed mesh's grid is).
@@ -36,20 +39,7 @@ inline const std::string kPressures =
     "<SurfacePressure name=\"push\" nodeGroup=\"zmax\" pressure=\"40\" curve=\"ramp 0.005\"/>"
     "<SurfacePressure name=\"suck\" nodeGroup=\"xmax\" pressure=\"-15\"/>";
 
-/// The pressures follow the CPU over 1000 steps (either integrator, triangles and quadrilaterals),
-/// and they matter.
-inline void pressuresFollowTheCpu(const std::string& root, double tol) {
-    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
-    const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
-    CAPTURE(integrator, meshName(mesh));
-    const Law law = deviceLaw("NeoHookean");
-    const Pair r = runBoth(law, kPressures, integrator, mesh, root, 1000);
-    const Pair without = runBoth(law, "", integrator, mesh, root, 1000);
-    const double apart = displacementError(without.device, r.cpu, r.rest);
-    CAPTURE(sci(r.err), sci(apart));
-    const bool central = integrator.find("Central") != std::string::npos;
-    CHECK(r.err <= (central && tol < 1e-6 ? 5e-9 : tol));
-    CHECK(apart >= 0.05);
-}
+/// The pressures follow the CPU (triangles on the tetrahedral grid, quadrilaterals on the mixed mesh's).
+inline void pressuresFollowTheCpu(const std::string& root, double tol) { followsTheCpu(kPressures, root, tol); }
 
 } // namespace cudatest::loads
