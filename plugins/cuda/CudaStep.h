@@ -8,9 +8,8 @@
 /// SurfacePressure's faces, a face kernel) in a fixed order, adds ConstantForce (on its load curve)
 /// and gravity, integrates with SemiImplicitEuler (HEML eq. (32)) or CentralDifference and puts the
 /// axes of FixedConstraint and PrescribedDisplacement where they hold them, in float or double. A
-/// component it cannot run is
-/// a located error naming it; no device is a located error too (exit 2): it never falls back to
-/// the host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
+/// component it cannot run is a located error naming it; no device is a located error too (exit 2):
+/// it never falls back to the host. emulate="true" runs the same kernel bodies over the same layout on the CPU (tests).
 /// The state stays on the device: the host queues the steps without waiting for them, and x and v
 /// come back only when something reads them (core::BaseStepBackend::fetch: observers that record
 /// the step, Simulation::state, checkpoints). What a program writes into x and v after such a read
