@@ -13,7 +13,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace fascia::cuda {
 
@@ -280,28 +282,18 @@ public:
     }
     void getState(std::vector<double>& u, std::vector<double>& v) override {
         const size_t n = m_u.size();
-        m_stage.allocate(2 * n);
-        download(m_u.get(), m_stage.get(), n);
-        download(m_v.get(), m_stage.get() + n, n);
-        wait();
-        u.assign(m_stage.get(), m_stage.get() + n);
-        v.assign(m_stage.get() + n, m_stage.get() + 2 * n);
+        const T* h = staged({{m_u.get(), n}, {m_v.get(), n}});
+        u.assign(h, h + n);
+        v.assign(h + n, h + 2 * n);
     }
     void getIncrements(std::vector<double>& du) override {
-        const size_t n = m_du.size();
-        m_stage.allocate(n);
-        download(m_du.get(), m_stage.get(), n);
-        wait();
-        du.assign(m_stage.get(), m_stage.get() + n);
+        const T* h = staged({{m_du.get(), m_du.size()}});
+        du.assign(h, h + m_du.size());
     }
     void setIncrements(const std::vector<double>& du) override { m_du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
     void getPronyStates(std::vector<double>& Y) override {
-        const size_t n = m_Y.size(), h = m_hY.size();
-        m_stage.allocate(n + h);
-        download(m_Y.get(), m_stage.get(), n);
-        download(m_hY.get(), m_stage.get() + n, h);
-        wait();
-        Y.assign(m_stage.get(), m_stage.get() + n + h);
+        const T* h = staged({{m_Y.get(), m_Y.size()}, {m_hY.get(), m_hY.size()}});
+        Y.assign(h, h + m_Y.size() + m_hY.size());
     }
     void setPronyStates(const std::vector<double>& Y) override {
         const size_t n = m_Y.size();
@@ -312,9 +304,7 @@ public:
     void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override {
         for (const auto& pass : m_passes) setCoefficients(pass->prony(), A, B);
     }
-    void setPressures(const FaceParams<double>& q) override {
-        for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
-    }
+    void setPressures(const FaceParams<double>& q) override { m_q = faceParamsIn<T>(q); }
     void elementPass() override {
         m_timer.run(0, m_stream, [&] {
             for (const auto& pass : m_passes) pass->launch(m_d, m_stream);
@@ -347,11 +337,8 @@ public:
     void internalForces(std::vector<double>& f) override {
         gatherKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, m_f.get());
         check(cudaGetLastError(), "the gather kernel launch");
-        const size_t n = m_f.size();
-        m_stage.allocate(n);
-        download(m_f.get(), m_stage.get(), n);
-        wait();
-        f.assign(m_stage.get(), m_stage.get() + n);
+        const T* h = staged({{m_f.get(), m_f.size()}});
+        f.assign(h, h + m_f.size());
     }
     long firstBadStep() override {
         m_flag.allocate(1);
@@ -364,8 +351,19 @@ public:
 private:
     static constexpr unsigned long long kNone = ~0ull;
     unsigned grid(int n) const { return fascia::cuda::grid(n, m_block); }
-    void download(const T* from, T* to, size_t n) {
-        if (n) check(cudaMemcpyAsync(to, from, n * sizeof(T), cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
+    /// Device arrays (pointer, length), after every step launched so far, one after the other in
+    /// the pinned stage, which it returns (valid until the next call).
+    const T* staged(std::initializer_list<std::pair<const T*, size_t>> parts) {
+        size_t total = 0;
+        for (const auto& [from, n] : parts) total += n;
+        m_stage.allocate(total);
+        T* to = m_stage.get();
+        for (const auto& [from, n] : parts) {
+            if (n) check(cudaMemcpyAsync(to, from, n * sizeof(T), cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
+            to += n;
+        }
+        wait();
+        return m_stage.get();
     }
     /// The arrays of h on the device, and m_d pointing at them.
     void upload(const StepArraysHost<T>& h) {

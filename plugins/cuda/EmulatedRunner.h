@@ -43,9 +43,7 @@ public:
         for (const auto& pass : m_passes) pass->run(d);
         for (int k = 0; k < d.nTris + d.nQuads; ++k) faceForces(d, m_q, k);
     }
-    void setPressures(const FaceParams<double>& q) override {
-        for (int k = 0; k < kMaxPressures; ++k) m_q.p[k] = static_cast<T>(q.p[k]);
-    }
+    void setPressures(const FaceParams<double>& q) override { m_q = faceParamsIn<T>(q); }
     void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override {
         for (const auto& pass : m_passes) setCoefficients(pass->prony(), A, B);
     }

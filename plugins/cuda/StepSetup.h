@@ -247,6 +247,14 @@ FaceParams<T> faceParams(const StepSetup& s, double t) {
     return q;
 }
 
+/// The same in the scalar T of a runner.
+template <class T>
+FaceParams<T> faceParamsIn(const FaceParams<double>& q) {
+    FaceParams<T> out;
+    for (int k = 0; k < kMaxPressures; ++k) out.p[k] = T(q.p[k]);
+    return out;
+}
+
 /// The node kernel's parameters of the step from t to t + dt in double (g(t) with the group's
 /// gravity curve; the kick for SemiImplicitEuler, a and b for CentralDifference).
 NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s, double t, double dt, double kick);
