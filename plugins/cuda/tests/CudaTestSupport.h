@@ -235,6 +235,18 @@ inline const std::string kLift =
     "<PrescribedDisplacement name=\"lift\" indices=\"12 30 31\" directions=\"0 1 1\" displacement=\"0 0.001 0.002\" "
     "shape=\"smooth\" rampTime=\"0.01\"/>";
 
+/// The Input error of initialising sim, built and changed in code before init (empty when it
+/// initialises).
+inline std::string initError(core::Simulation& sim) {
+    try {
+        sim.init();
+    } catch (const core::Error& e) {
+        CHECK(e.kind() == core::ErrorKind::Input);
+        return e.what();
+    }
+    return {};
+}
+
 /// The Input error of initialising a scene (empty when it initialises).
 inline std::string initError(const std::string& xml) {
     try {

@@ -286,13 +286,7 @@ TEST_CASE("A material outside the device step's laws is an error naming it and t
     auto* link = dynamic_cast<core::Link<fascia::materials::BaseMaterial>*>(ff->findParam("material"));
     REQUIRE(link);
     link->set(&user);
-    std::string err;
-    try {
-        sim->init();
-    } catch (const core::Error& e) {
-        CHECK(e.kind() == core::ErrorKind::Input);
-        err = e.what();
-    }
+    const std::string err = initError(*sim);
     CAPTURE(err);
     CHECK(err.find("GenericMaterial 'user'") != std::string::npos);  // (added from code: no line to locate)
     CHECK(err.find("not on the GPU step") != std::string::npos);
@@ -357,13 +351,7 @@ TEST_CASE("A group whose material is not a device law is a located error naming 
     REQUIRE(ff);
     auto& user = ff->node()->add<fascia::materials::conformance::GenericMaterial>("user");
     user.inner = mat;
-    std::string err;
-    try {
-        sim->init();
-    } catch (const core::Error& e) {
-        CHECK(e.kind() == core::ErrorKind::Input);
-        err = e.what();
-    }
+    const std::string err = initError(*sim);
     CAPTURE(err);
     // located at the groupMaterials that names it (the material, added from code, has no line)
     CHECK(err.find("<string>:9: error: TLEDForceField 'ff': groupMaterials: the material GenericMaterial 'user'") == 0);
