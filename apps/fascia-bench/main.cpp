@@ -457,6 +457,10 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --precision is double or mixed" << (c.device.empty() ? "" : " on the CPU, double or float on --device cuda") << "\n";
         return 1;
     }
+    if (c.block > 0 && c.device.empty()) {
+        std::cerr << "fascia-bench: --cuda-block needs --device cuda (or emulate)\n";
+        return 1;
+    }
     if (!c.device.empty() && (c.forcefield != "TLED" || c.reference || c.contend)) {
         std::cerr << "fascia-bench: --device " << c.device << " runs TLED (--forcefield TLED), without --reference or --contend\n";
         return 1;

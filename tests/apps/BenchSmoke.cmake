@@ -59,3 +59,7 @@ foreach(args "--device;opencl" "--device;cuda;--forcefield;TLED;--precision;mixe
     message(FATAL_ERROR "fascia-bench ${args}: exit ${rc}, ${err}")
   endif()
 endforeach()
+execute_process(COMMAND ${FASCIA_BENCH} --cuda-block 128 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --cuda-block needs --device")
+  message(FATAL_ERROR "fascia-bench --cuda-block without --device: exit ${rc}, ${err}")
+endif()
