@@ -1,4 +1,5 @@
 #include "fascia/elements/Geometry.h"
+#include "fascia/elements/EdgeForm.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -187,6 +188,36 @@ double stableTimeStep(size_t elements, const std::function<double(size_t)>& leng
         if (it->second > 0) dt = std::min(dt, length(e) / it->second);
     }
     return dt;
+}
+
+EdgeRest edgeRest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+    EdgeRest r;
+    r.V.col(0) = p1 - p0;
+    r.V.col(1) = p2 - p0;
+    r.V.col(2) = p3 - p0;
+    r.det = r.V.determinant();
+    r.Vi = r.V.inverse();
+    const Mat3 G = r.Vi * r.Vi.transpose();
+    r.G[0] = G(0, 0);
+    r.G[1] = G(1, 1);
+    r.G[2] = G(2, 2);
+    r.G[3] = G(0, 1);
+    r.G[4] = G(1, 2);
+    r.G[5] = G(0, 2);
+    return r;
+}
+
+EdgeShares::EdgeShares(const Tetrahedra& tets) {
+    for (const auto& t : tets)
+        for (int k = 0; k < 6; ++k) {
+            const int a = t[static_cast<size_t>(edgeA(k))], b = t[static_cast<size_t>(edgeB(k))];
+            ++m_count[{std::min(a, b), std::max(a, b)}];
+        }
+}
+
+int EdgeShares::count(int a, int b) const {
+    const auto it = m_count.find({std::min(a, b), std::max(a, b)});
+    return it == m_count.end() ? 0 : it->second;
 }
 
 } // namespace fascia::elements

@@ -282,13 +282,7 @@ void HEMLForceField::precompute(const Positions& rest) {
     }
 
     // edges shared between tetrahedra (mass-spring mode splits k between them)
-    std::map<std::pair<int, int>, int> edgeCount;
-    if (d.massSpring)
-        for (const auto& t : m_tets)
-            for (int k = 0; k < 6; ++k) {
-                int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
-                ++edgeCount[{std::min(a, b), std::max(a, b)}];
-            }
+    const elements::EdgeShares shares(d.massSpring ? m_tets : Tetrahedra{});
 
     m_altitude.assign(ne, 0.0);
     for (size_t slot = 0; slot < S; ++slot) {
@@ -298,11 +292,10 @@ void HEMLForceField::precompute(const Positions& rest) {
         const auto& t = m_tets[e];
         for (int a = 0; a < 4; ++a) d.node[a][slot] = d.internalOf[t[a]];
         // Algorithm 1: V, V^-1, Vol, C_k, vtr, Mtr
-        Mat3 V;
-        for (int k = 0; k < 3; ++k) V.col(k) = rest[t[k + 1]] - rest[t[0]];
-        const double det = V.determinant();
+        const elements::EdgeRest er = elements::edgeRest(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]]);
+        const double det = er.det;
         double maxEdge = 0;
-        for (int k = 0; k < 6; ++k) maxEdge = std::max(maxEdge, (rest[t[kEdgeB[k]]] - rest[t[kEdgeA[k]]]).norm());
+        for (int k = 0; k < 6; ++k) maxEdge = std::max(maxEdge, (rest[t[edgeB(k)]] - rest[t[edgeA(k)]]).norm());
         if (!(std::abs(det) > 1e-12 * maxEdge * maxEdge * maxEdge))
             fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
                  std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
@@ -311,22 +304,16 @@ void HEMLForceField::precompute(const Positions& rest) {
         if (!pad) m_altitude[e] = elements::tetAltitude(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]], std::abs(det) / 6.0);
         if (d.massSpring) {
             for (int k = 0; k < 6; ++k) {
-                const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
+                const int a = t[edgeA(k)], b = t[edgeB(k)];
                 el.len0[k][slot] = (rest[b] - rest[a]).norm();
-                el.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / edgeCount[{std::min(a, b), std::max(a, b)}];
+                el.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / shares.count(a, b);
             }
             continue;
         }
         // Algorithm 1 (Appendix A, C): C_k = V^-T D_k V^-1 enter through G = V^-1 V^-T only
         // (vtr_k = tr(D_k G), Mtr_ij = tr(D_i G D_j G), a0.C_k a0 = (V^-1 a0).D_k (V^-1 a0))
-        const Mat3 Vi = V.inverse();
-        const Mat3 G = Vi * Vi.transpose();
-        el.G[0][slot] = G(0, 0);
-        el.G[1][slot] = G(1, 1);
-        el.G[2][slot] = G(2, 2);
-        el.G[3][slot] = G(0, 1);
-        el.G[4][slot] = G(1, 2);
-        el.G[5][slot] = G(0, 2);
+        const Mat3& Vi = er.Vi;
+        for (int q = 0; q < 6; ++q) el.G[q][slot] = er.G[q];
         if (anyI4) {
             const Vec3 w = m_dirA[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirA[e]);
             for (int q = 0; q < 3; ++q) el.w4[q][slot] = w[q];
@@ -472,7 +459,7 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
         std::map<std::pair<int, int>, bool> edges;
         for (const auto& t : m_tets)
             for (int k = 0; k < 6; ++k) {
-                const int a = t[kEdgeA[k]], b = t[kEdgeB[k]];
+                const int a = t[edgeA(k)], b = t[edgeB(k)];
                 edges[{std::min(a, b), std::max(a, b)}] = true;
             }
         std::vector<double> rate(d.nNodes, 0.0);

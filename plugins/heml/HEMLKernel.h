@@ -1,12 +1,13 @@
 #pragma once
 /// Internal to HEMLForceField: the element data as structure of arrays and the element loop
-/// (HEML Algorithm 2), templated on how the law is evaluated (an inlined built-in law, a batched
+/// (HEML Algorithm 2, its per-element math in fascia/elements/EdgeForm.h, shared with the device step), templated on how the law is evaluated (an inlined built-in law, a batched
 /// virtual call for any other material, or the mass-spring energy of eq. (38)) and on the scalar
 /// type T of the element data and math: double, or float for precision="mixed" (issue 17). The
 /// element math is written once for both; node positions, the block's node rows and the energy
 /// sum are double in both.
 #include "fascia/base/Simd.h"
 #include "fascia/elements/BlockBuffers.h"
+#include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
 #include "fascia/viscoelastic/HistoryClock.h"
@@ -39,21 +40,9 @@ constexpr int kLanes = 16;
 /// the mesh only, never on the thread count (docs/design.md, determinism).
 constexpr size_t kBlockSize = 1024;
 
-/// Edge k joins local nodes kEdgeA[k] -> kEdgeB[k]: v1 = x1 - x0, v2 = x2 - x0, v3 = x3 - x0,
-/// v4 = v2 - v1, v5 = v3 - v2, v6 = v1 - v3 (HEML Appendix A, eq. (A.2)).
-constexpr int kEdgeA[6] = {0, 0, 0, 1, 2, 3};
-constexpr int kEdgeB[6] = {1, 2, 3, 2, 3, 1};
-/// tr(D_k M) for the six D_k of eq. (A.6) and a symmetric M = (M11 M22 M33 M12 M23 M13): the map
-/// from a 3x3 tensor in the rest edge basis to the six link coefficients.
-template <class T>
-FASCIA_INLINE void traceDk(T M11, T M22, T M33, T M12, T M23, T M13, T out[6]) {
-    out[0] = M11 + M12 + M13;
-    out[1] = M22 + M12 + M23;
-    out[2] = M33 + M13 + M23;
-    out[3] = -M12;
-    out[4] = -M23;
-    out[5] = -M13;
-}
+using elements::edgeA;
+using elements::edgeB;
+using elements::traceDk;
 
 /// A contiguous range of (padded) element slots with one material. Its elements refer to the
 /// block's own node rows (HEMLData::rows, block of the same index): positions are copied into them
@@ -229,55 +218,25 @@ FASCIA_INLINE void edgesAndInvariants(const HEMLData& d, Chunk<T>& c, size_t e0,
     for (int j = 0; j < kLanes; ++j) {
         T ev[6][3], l[6];
         for (int k = 0; k < 6; ++k) {
-            for (int q = 0; q < 3; ++q) ev[k][q] = T(c.px[kEdgeB[k]][q][j] - c.px[kEdgeA[k]][q][j]);
+            for (int q = 0; q < 3; ++q) ev[k][q] = T(c.px[edgeB(k)][q][j] - c.px[edgeA(k)][q][j]);
             l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
             c.l[k][j] = l[k];
             for (int q = 0; q < 3; ++q) c.ev[k][q][j] = ev[k][q];
         }
         // signed volume ratio: det(v1, v2, v3) / det(V1, V2, V3)
-        const T det = ev[0][0] * (ev[1][1] * ev[2][2] - ev[1][2] * ev[2][1]) +
-                      ev[0][1] * (ev[1][2] * ev[2][0] - ev[1][0] * ev[2][2]) +
-                      ev[0][2] * (ev[1][0] * ev[2][1] - ev[1][1] * ev[2][0]);
-        c.J[j] = det * invDetV[j];
+        c.J[j] = elements::edgeDeterminant(ev) * invDetV[j];
         if constexpr (!Eval::spring) {
-            // D(l) of eq. (A.4): D = V^T C V
-            const T D11 = l[0], D22 = l[1], D33 = l[2];
-            const T D12 = T(0.5) * (l[0] + l[1] - l[3]), D23 = T(0.5) * (l[1] + l[2] - l[4]), D13 = T(0.5) * (l[0] + l[2] - l[5]);
-            const T g11 = el.G[0][e0 + j], g22 = el.G[1][e0 + j], g33 = el.G[2][e0 + j];
-            const T g12 = el.G[3][e0 + j], g23 = el.G[4][e0 + j], g13 = el.G[5][e0 + j];
-            // I1 = vtr.l = tr(D G)   (eq. (C.1))
-            const T I1 = D11 * g11 + D22 * g22 + D33 * g33 + T(2) * (D12 * g12 + D23 * g23 + D13 * g13);
-            // H = G D G, so that (Mtr l)_k = tr(D_k H) and tr(C^2) = l^T Mtr l = tr(D H)
-            const T P11 = g11 * D11 + g12 * D12 + g13 * D13, P12 = g11 * D12 + g12 * D22 + g13 * D23,
-                    P13 = g11 * D13 + g12 * D23 + g13 * D33;
-            const T P21 = g12 * D11 + g22 * D12 + g23 * D13, P22 = g12 * D12 + g22 * D22 + g23 * D23,
-                    P23 = g12 * D13 + g22 * D23 + g23 * D33;
-            const T P31 = g13 * D11 + g23 * D12 + g33 * D13, P32 = g13 * D12 + g23 * D22 + g33 * D23,
-                    P33 = g13 * D13 + g23 * D23 + g33 * D33;
-            const T H11 = P11 * g11 + P12 * g12 + P13 * g13, H22 = P21 * g12 + P22 * g22 + P23 * g23,
-                    H33 = P31 * g13 + P32 * g23 + P33 * g33, H12 = P11 * g12 + P12 * g22 + P13 * g23,
-                    H23 = P21 * g13 + P22 * g23 + P23 * g33, H13 = P11 * g13 + P12 * g23 + P13 * g33;
-            const T trC2 = D11 * H11 + D22 * H22 + D33 * H33 + T(2) * (D12 * H12 + D23 * H23 + D13 * H13);
-            c.H[0][j] = H11;
-            c.H[1][j] = H22;
-            c.H[2][j] = H33;
-            c.H[3][j] = H12;
-            c.H[4][j] = H23;
-            c.H[5][j] = H13;
+            // D(l) of eq. (A.4), I1 = tr(D G), I2 and H = G D G (eq. (C.1))
+            const elements::Sym33<T> D = elements::gramOfLengths(l);
+            const T G[6] = {el.G[0][e0 + j], el.G[1][e0 + j], el.G[2][e0 + j], el.G[3][e0 + j], el.G[4][e0 + j], el.G[5][e0 + j]};
+            T I1, I2, H[6];
+            elements::edgeInvariants(D, G, I1, I2, H);
+            for (int q = 0; q < 6; ++q) c.H[q][j] = H[q];
             c.I1[j] = I1;
-            c.I2[j] = T(0.5) * (I1 * I1 - trC2);
-            T I4 = T(1), I6 = T(1);
-            if (useI4) {
-                // I4 = a0.C a0 = w.D w, w = V^-1 a0
-                const T w1 = el.w4[0][e0 + j], w2 = el.w4[1][e0 + j], w3 = el.w4[2][e0 + j];
-                I4 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + T(2) * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
-            }
-            if (useI6) {
-                const T w1 = el.w6[0][e0 + j], w2 = el.w6[1][e0 + j], w3 = el.w6[2][e0 + j];
-                I6 = D11 * w1 * w1 + D22 * w2 * w2 + D33 * w3 * w3 + T(2) * (D12 * w1 * w2 + D23 * w2 * w3 + D13 * w1 * w3);
-            }
-            c.I4[j] = I4;
-            c.I6[j] = I6;
+            c.I2[j] = I2;
+            // I4 = a0.C a0 = w.D w, w = V^-1 a0 (I6 likewise with b0)
+            c.I4[j] = useI4 ? elements::edgeFibreInvariant(D, el.w4[0][e0 + j], el.w4[1][e0 + j], el.w4[2][e0 + j]) : T(1);
+            c.I6[j] = useI6 ? elements::edgeFibreInvariant(D, el.w6[0][e0 + j], el.w6[1][e0 + j], el.w6[2][e0 + j]) : T(1);
         }
     }
 }
@@ -294,36 +253,20 @@ FASCIA_INLINE void generalisedForces(const HEMLData& d, Chunk<T>& c, size_t e0, 
         if constexpr (Eval::spring) {
             // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
             W = T(0);
-            for (int k = 0; k < 6; ++k) {
-                const T L2 = c.l[k][j] > kTiny<T> ? c.l[k][j] : kTiny<T>;
-                const T len = std::sqrt(L2);
-                const T kk = el.kk[k][e0 + j], l0 = el.len0[k][e0 + j];
-                W += T(0.5) * kk * (len - l0) * (len - l0);
-                g[k] = T(0.5) * kk * (T(1) - l0 / len);
-            }
+            for (int k = 0; k < 6; ++k)
+                g[k] = elements::springLink(c.l[k][j] > kTiny<T> ? c.l[k][j] : kTiny<T>, el.kk[k][e0 + j], el.len0[k][e0 + j], W);
             Qiso = Qvol = T(0);
         } else {
             W = V * c.W[j];
             // g_k = Vol (dI1 vtr_k + dI2 (I1 vtr_k - (Mtr l)_k) + dI4 a0.C_k a0 + dI6 b0.C_k b0)   (eq. (C.2)-(C.3))
             //     = Vol tr(D_k Sg),  Sg = dI1 G + dI2 (I1 G - H) + dI4 w w^T + dI6 u u^T
-            const T I1 = c.I1[j], dI1 = c.dI1[j], dI2 = c.dI2[j];
-            const T a = dI1 + dI2 * I1;
+            const T G[6] = {el.G[0][e0 + j], el.G[1][e0 + j], el.G[2][e0 + j], el.G[3][e0 + j], el.G[4][e0 + j], el.G[5][e0 + j]};
+            const T H[6] = {c.H[0][j], c.H[1][j], c.H[2][j], c.H[3][j], c.H[4][j], c.H[5][j]};
             T Sg[6];
-            for (int q = 0; q < 6; ++q) Sg[q] = a * el.G[q][e0 + j] - dI2 * c.H[q][j];
-            // Sg += s w w^T (6 components), w = V^-1 a0 or V^-1 b0
-            const auto addFibre = [&](const SVec<T>* w, T sf) {
-                const T w1 = w[0][e0 + j], w2 = w[1][e0 + j], w3 = w[2][e0 + j];
-                Sg[0] += sf * w1 * w1;
-                Sg[1] += sf * w2 * w2;
-                Sg[2] += sf * w3 * w3;
-                Sg[3] += sf * w1 * w2;
-                Sg[4] += sf * w2 * w3;
-                Sg[5] += sf * w1 * w3;
-            };
-            if (useI4) addFibre(el.w4, c.dI4[j]);
-            if (useI6) addFibre(el.w6, c.dI6[j]);
-            traceDk(Sg[0], Sg[1], Sg[2], Sg[3], Sg[4], Sg[5], g);
-            for (int k = 0; k < 6; ++k) g[k] *= V;
+            elements::edgeStress(G, H, c.I1[j], c.dI1[j], c.dI2[j], Sg);
+            if (useI4) elements::addFibreTerm(Sg, el.w4[0][e0 + j], el.w4[1][e0 + j], el.w4[2][e0 + j], c.dI4[j]);
+            if (useI6) elements::addFibreTerm(Sg, el.w6[0][e0 + j], el.w6[1][e0 + j], el.w6[2][e0 + j], c.dI6[j]);
+            elements::linkCoefficients(Sg, V, g);
             Qiso = V * c.dJiso[j];
             Qvol = V * c.dJvol[j];
         }
@@ -342,11 +285,7 @@ FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift
     // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
     if (shift != 0.0) {
         const T* vol = el.vol.data() + e0;
-        for (int j = 0; j < kLanes; ++j) {
-            const T q = vol[j] * T(shift) / std::max(T(d.J0), c.J[j]);
-            c.Qi[j] -= q;
-            c.Qv[j] += q;
-        }
+        for (int j = 0; j < kLanes; ++j) elements::shiftVolumeTerms(c.Qi[j], c.Qv[j], vol[j], T(shift), T(d.J0), c.J[j]);
     }
     // the relaxed part as link coefficients R_k: g_k when the isochoric part relaxes, plus the
     // relaxed J coefficient (Qi, Qv or both, per `apply`) through dJ/dl_k
@@ -354,17 +293,11 @@ FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift
     const T wIso = d.relaxIso ? T(1) : T(0), wVol = d.relaxVol ? T(1) : T(0);  // (no branch in the loop)
 #pragma GCC ivdep
     for (int j = 0; j < kLanes; ++j) {
-        const T l0 = c.l[0][j], l1 = c.l[1][j], l2 = c.l[2][j];
-        const T D11 = l0, D22 = l1, D33 = l2;
-        const T D12 = T(0.5) * (l0 + l1 - c.l[3][j]), D23 = T(0.5) * (l1 + l2 - c.l[4][j]), D13 = T(0.5) * (l0 + l2 - c.l[5][j]);
-        const T J = c.J[j];
-        const T iJ = T(1) / (std::abs(J) > kTiny<T> ? J : (J < T(0) ? -kTiny<T> : kTiny<T>));
-        const T Q = wIso * c.Qi[j] + wVol * c.Qv[j];
-        const T s = T(0.5) * Q * invDetV[j] * invDetV[j] * iJ;
-        T out[6];
-        traceDk(s * (D22 * D33 - D23 * D23), s * (D11 * D33 - D13 * D13), s * (D11 * D22 - D12 * D12),
-                s * (D13 * D23 - D12 * D33), s * (D12 * D13 - D11 * D23), s * (D12 * D23 - D13 * D22), out);
-        for (int k = 0; k < 6; ++k) rel[k][j] = wIso * c.gk[k][j] + out[k];
+        const T l[6] = {c.l[0][j], c.l[1][j], c.l[2][j], c.l[3][j], c.l[4][j], c.l[5][j]};
+        const T g[6] = {c.gk[0][j], c.gk[1][j], c.gk[2][j], c.gk[3][j], c.gk[4][j], c.gk[5][j]};
+        T R[6];
+        elements::relaxedLinks(elements::gramOfLengths(l), c.J[j], wIso * c.Qi[j] + wVol * c.Qv[j], invDetV[j], wIso, g, kTiny<T>, R);
+        for (int k = 0; k < 6; ++k) rel[k][j] = R[k];
     }
 }
 
@@ -420,31 +353,12 @@ FASCIA_INLINE void nodalForces(const HEMLData& d, Chunk<T>& c, size_t e0) {
         T g[6];
         for (int k = 0; k < 6; ++k) g[k] = c.gk[k][j];
         const T Qiso = c.Qi[j], Qvol = c.Qv[j];
-        T f[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-        // links: -2 g_k (x_a - x_b) on a, the opposite on b (eq. (12)-(13), (B.1)-(B.2))
+        T ev[6][3];
         for (int k = 0; k < 6; ++k)
-            for (int q = 0; q < 3; ++q) {
-                const T t = T(2) * g[k] * c.ev[k][q][j];
-                f[kEdgeA[k]][q] += t;
-                f[kEdgeB[k]][q] -= t;
-            }
-        // volume: -Vol dW/dJ dJ/dx_i, dJ/dx_i = d det(v)/dx_i / det(V) (eq. (C.4))
-        const T cJ = (Qiso + Qvol) * invDetV[j];
-        T v1[3], v2[3], v3[3];
-        for (int q = 0; q < 3; ++q) {
-            v1[q] = c.ev[0][q][j];
-            v2[q] = c.ev[1][q][j];
-            v3[q] = c.ev[2][q][j];
-        }
-        const T g1[3] = {v2[1] * v3[2] - v2[2] * v3[1], v2[2] * v3[0] - v2[0] * v3[2], v2[0] * v3[1] - v2[1] * v3[0]};
-        const T g2[3] = {v3[1] * v1[2] - v3[2] * v1[1], v3[2] * v1[0] - v3[0] * v1[2], v3[0] * v1[1] - v3[1] * v1[0]};
-        const T g3[3] = {v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]};
-        for (int q = 0; q < 3; ++q) {
-            f[1][q] -= cJ * g1[q];
-            f[2][q] -= cJ * g2[q];
-            f[3][q] -= cJ * g3[q];
-            f[0][q] += cJ * (g1[q] + g2[q] + g3[q]);
-        }
+            for (int q = 0; q < 3; ++q) ev[k][q] = c.ev[k][q][j];
+        // links: -2 g_k (x_a - x_b) on a, the opposite on b; volume: -Vol dW/dJ dJ/dx_i (EdgeForm.h)
+        T f[4][3];
+        elements::edgeNodalForces(g, (Qiso + Qvol) * invDetV[j], ev, f);
         for (int a = 0; a < 4; ++a)
             for (int q = 0; q < 3; ++q) c.f[a][q][j] = f[a][q];
     }

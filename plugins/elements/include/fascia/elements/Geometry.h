@@ -5,6 +5,8 @@
 #include "fascia/sim/Mechanics.h"
 
 #include <functional>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace fascia::elements {
@@ -44,6 +46,28 @@ struct TetRest {
 /// TetRest of every tetrahedron; fails located at owner for a node out of range or an element
 /// inverted or flat at rest.
 TetRest tetRest(const core::Component& owner, const Positions& X, const Tetrahedra& tets);
+
+/// HEML's rest data of a tetrahedron (HEML Algorithm 1, Appendices A and C; fascia/elements/EdgeForm.h):
+/// the rest edge matrix V (columns p1 - p0, p2 - p0, p3 - p0), its inverse Vi, det V and
+/// G = Vi Vi^T as (xx yy zz xy yz xz).
+struct EdgeRest {
+    Mat3 V, Vi;
+    double det = 0;
+    double G[6] = {};
+};
+EdgeRest edgeRest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
+/// The number of tetrahedra on each mesh edge (HEML's mass-spring mode splits an edge's stiffness
+/// between them, eq. (38): one spring per mesh edge in all).
+class EdgeShares {
+public:
+    explicit EdgeShares(const Tetrahedra& tets);
+    /// the tetrahedra on the edge between nodes a and b (0 for no edge)
+    int count(int a, int b) const;
+
+private:
+    std::map<std::pair<int, int>, int> m_count;
+};
 
 /// The density for wave speeds: the mass's density, else its total mass over the mesh volume
 /// (restVolume, m^3); NaN when neither is known. One rule for HEML and TLED.
