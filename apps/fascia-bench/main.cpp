@@ -44,7 +44,7 @@ usage:
   --node-buffers L  TLED's block force buffers: auto (default), range (each block's node range)
                   or compact (one row per node of the block); with --suite, every TLED case
   --device D      cpu (default) or cuda: the whole step on a CUDA GPU (a CudaStep in the root
-                  node; TLED only; --precision is then double or float; emulate: the same through
+                  node; TLED or HEML; --precision is then double or float; emulate: the same through
                   CudaStep's CPU emulation, one thread, to check the bench's path). The host queues the
                   steps; each timed window ends with one wait for the device, and no state comes
                   back (no snapshot: Simulation::setSnapshotEvery(0)). Steps are timed by whole
@@ -75,10 +75,11 @@ usage:
                   SurfaceTool), buffers (TLED's two layouts of the block
                   buffers, range and compact, in double and mixed on 2 threads, on the large
                   suite's cubes), gpu (issue 15's figures on a CUDA GPU: the 21k organ mesh on
-                  the CPU (TLED, 2 threads) first, then on the GPU in float and double; at 2M
-                  tetrahedra, per precision, neo-Hookean first, then transversely isotropic,
-                  one Prony term and hexahedra; neo-Hookean tetrahedra in float and double at
-                  the sizes of --cubes, default 150: 20.25M)
+                  the CPU (TLED, 2 threads) first, then on the GPU, TLED and HEML, in float and
+                  double; at 2M tetrahedra, per precision, TLED neo-Hookean first, then
+                  transversely isotropic, one Prony term, hexahedra and HEML neo-Hookean;
+                  TLED neo-Hookean tetrahedra in float and double at the sizes of --cubes,
+                  default 150: 20.25M)
   --cubes LIST    the large suite's sizes as cube cells per side, e.g. 15,32 (default 15,32,50,70)
   --overhead N    per-step cost of the framework: a one-node scene with N trivial components
                   (ConstantForce) against the same scene with none
@@ -304,10 +305,10 @@ void suiteHeml(const Case& c, const SuiteOptions& o) {
 }
 
 /// Issue 15's figures on a CUDA GPU (docs/performance.md), the quick ones first: the 21k organ mesh
-/// on the CPU (TLED, 2 threads) and then on the GPU in float and double; at 2M tetrahedra, per
-/// precision, neo-Hookean first, then transversely isotropic, one Prony term and hexahedra (ratios
-/// from the same rounds); then neo-Hookean tetrahedra at the sizes of --cubes (default 150: 20.25M
-/// elements), float then double.
+/// on the CPU (TLED, 2 threads) and then on the GPU, TLED and HEML, in float and double; at 2M
+/// tetrahedra, per precision, TLED neo-Hookean first, then transversely isotropic, one Prony term,
+/// hexahedra and HEML neo-Hookean (ratios from the same rounds); then TLED neo-Hookean tetrahedra at
+/// the sizes of --cubes (default 150: 20.25M elements), float then double.
 void suiteGpu(const Case& c, const SuiteOptions& o) {
     // a line the device cannot run is said on stderr, and the next line runs (GPU time is scarce)
     const auto line = [](const std::vector<Case>& cs) {
@@ -325,13 +326,15 @@ void suiteGpu(const Case& c, const SuiteOptions& o) {
     cpu.steps = 2000;
     cpu.repeat = std::min(c.repeat, 5);
     organ.push_back(cpu);
-    for (const char* precision : {"float", "double"}) {
-        Case s = cpu;
-        s.device = "cuda";
-        s.precision = precision;
-        s.steps = 20000;
-        organ.push_back(s);
-    }
+    for (const char* ff : {"TLED", "HEML"})
+        for (const char* precision : {"float", "double"}) {
+            Case s = cpu;
+            s.forcefield = ff;
+            s.device = "cuda";
+            s.precision = precision;
+            s.steps = 20000;
+            organ.push_back(s);
+        }
     line(organ);
     Case base = sideBySide(c, "TLED");
     base.device = "cuda";
@@ -353,6 +356,9 @@ void suiteGpu(const Case& c, const SuiteOptions& o) {
         h.element = "hexahedra";
         h.cube = 126;
         cases.push_back(h);
+        Case e = cases[0];  // HEML's edge form on the same tetrahedra
+        e.forcefield = "HEML";
+        cases.push_back(e);
         line(cases);
     }
     for (int cube : o.cubes.empty() ? std::vector<int>{150} : o.cubes)  // 6 cube^3 tetrahedra
@@ -461,8 +467,8 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --cuda-block needs --device cuda (or emulate)\n";
         return 1;
     }
-    if (!c.device.empty() && (c.forcefield != "TLED" || c.reference || c.contend)) {
-        std::cerr << "fascia-bench: --device " << c.device << " runs TLED (--forcefield TLED), without --reference or --contend\n";
+    if (!c.device.empty() && (c.reference || c.contend)) {
+        std::cerr << "fascia-bench: --device " << c.device << " runs without --reference or --contend\n";
         return 1;
     }
     if (!c.nodeBuffers.empty() && c.nodeBuffers != "auto" && c.nodeBuffers != "range" && c.nodeBuffers != "compact") {

@@ -50,6 +50,22 @@ __global__ void hexKernel(StepArrays<T> d, ElementParams<Law, T> p, const int* l
     }
 }
 
+template <class Law, class T, bool Relaxed, bool Listed>
+__global__ void edgeKernel(StepArrays<T> d, ElementParams<Law, T> p, const int* list, int count) {
+    const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if constexpr (Listed) {
+        if (k < count) edgeForces<Relaxed>(d, p, list[k]);
+    } else if (k < d.nTets) {
+        edgeForces<Relaxed>(d, p, k);
+    }
+}
+
+template <class T>
+__global__ void springKernel(StepArrays<T> d) {
+    const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+    if (k < d.nTets) springForces(d, k);
+}
+
 template <class T>
 __global__ void faceKernel(StepArrays<T> d, FaceParams<T> q) {
     const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
@@ -216,9 +232,9 @@ public:
         }
         m_nTets = s.groups.size() > 1 ? static_cast<int>(g.tets.size()) : s.nTets;
         m_nHexes = s.groups.size() > 1 ? static_cast<int>(g.hexes.size()) : s.nHexes;
-        const bool listed = s.groups.size() > 1;
-        if (m_p.prony.series > 0) listed ? choose<true, true>(s.fibresPerElement) : choose<true, false>(s.fibresPerElement);
-        else listed ? choose<false, true>(s.fibresPerElement) : choose<false, false>(s.fibresPerElement);
+        const bool listed = s.groups.size() > 1, edges = s.form == StepSetup::Form::Edges;
+        if (m_p.prony.series > 0) listed ? choose<true, true>(s.fibresPerElement, edges) : choose<true, false>(s.fibresPerElement, edges);
+        else listed ? choose<false, true>(s.fibresPerElement, edges) : choose<false, false>(s.fibresPerElement, edges);
         m_tetBlock = fitBlock(m_tetKernel, block);
         m_hexBlock = fitBlock(m_hexKernel, block);
     }
@@ -235,8 +251,15 @@ public:
     PronyParams<T>& prony() override { return m_p.prony; }
 
 private:
+    /// The kernels of the variant: HEML's edge form on the tetrahedra (edges: its fibres are per
+    /// element always), else TLED's, with fibres per element or not.
     template <bool Relaxed, bool Listed>
-    void choose(bool fibres) {
+    void choose(bool fibres, bool edges) {
+        m_hexKernel = hexKernel<Law, T, Relaxed, false, Listed>;
+        if (edges) {
+            m_tetKernel = edgeKernel<Law, T, Relaxed, Listed>;
+            return;
+        }
         if constexpr (detail::Uses<Law>::i4 || detail::Uses<Law>::i6)
             if (fibres) {
                 m_tetKernel = tetKernel<Law, T, Relaxed, true, Listed>;
@@ -244,7 +267,6 @@ private:
                 return;
             }
         m_tetKernel = tetKernel<Law, T, Relaxed, false, Listed>;
-        m_hexKernel = hexKernel<Law, T, Relaxed, false, Listed>;
     }
     ElementParams<Law, T> m_p;
     DeviceArray<int> m_tets, m_hexes;  ///< the group's element lists (empty: every element)
@@ -252,6 +274,23 @@ private:
     using Kernel = void (*)(StepArrays<T>, ElementParams<Law, T>, const int*, int);
     Kernel m_tetKernel = nullptr, m_hexKernel = nullptr;
     int m_tetBlock = 0, m_hexBlock = 0;  ///< their block sizes (fitBlock)
+};
+
+/// HEML's mass-spring mode over every tetrahedron (StepSetup::springs: no material, no series).
+template <class T>
+class SpringPass final : public ElementPass<T> {
+public:
+    SpringPass(const StepSetup& s, int block) : m_n(s.nTets), m_block(fitBlock(springKernel<T>, block)) {}
+    void launch(const StepArrays<T>& d, cudaStream_t s) override {
+        if (m_n == 0) return;
+        springKernel<T><<<grid(m_n, m_block), m_block, 0, s>>>(d);
+        check(cudaGetLastError(), "the spring kernel launch");
+    }
+    PronyParams<T>& prony() override { return m_none; }
+
+private:
+    int m_n, m_block;
+    PronyParams<T> m_none;
 };
 
 /// The device step of one body: its arrays on the device, its launches on a stream of its own. The
@@ -268,6 +307,7 @@ public:
         forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
             m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>, T>>(s, g, law, block, m_stream));
         });
+        if (s.springs) m_passes.push_back(std::make_unique<SpringPass<T>>(s, block));
     }
     ~CudaRunner() override {
         cudaStreamSynchronize(m_stream);
@@ -374,6 +414,13 @@ private:
         m_dN.upload(h.dN, s);
         m_vol.upload(h.vol, s);
         m_ef.upload(h.ef, s);
+        m_eV.upload(h.eV, s);
+        m_eG.upload(h.eG, s);
+        m_eInvDetV.upload(h.eInvDetV, s);
+        m_ew4.upload(h.ew4, s);
+        m_ew6.upload(h.ew6, s);
+        m_ekk.upload(h.ekk, s);
+        m_elen0.upload(h.elen0, s);
         m_hex.upload(h.hex, s);
         m_hdN.upload(h.hdN, s);
         m_hgC.upload(h.hgC, s);
@@ -412,6 +459,13 @@ private:
         m_d.dN = m_dN.get();
         m_d.vol = m_vol.get();
         m_d.ef = m_ef.get();
+        m_d.eV = m_eV.get();
+        m_d.eG = m_eG.get();
+        m_d.eInvDetV = m_eInvDetV.get();
+        m_d.ew4 = m_ew4.get();
+        m_d.ew6 = m_ew6.get();
+        m_d.ekk = m_ekk.get();
+        m_d.elen0 = m_elen0.get();
         m_d.nHexes = h.nHexes;
         m_d.hex = m_hex.get();
         m_d.hdN = m_hdN.get();
@@ -457,6 +511,7 @@ private:
     DeviceArray<std::uint32_t> m_slots;
     DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
     DeviceArray<T> m_fa, m_fb, m_hfa, m_hfb;  ///< the fibre directions per element (empty without fibre arrays)
+    DeviceArray<T> m_eV, m_eG, m_eInvDetV, m_ew4, m_ew6, m_ekk, m_elen0;  ///< HEML's (StepSetup::Form::Edges)
     DeviceArray<std::uint32_t> m_hold;
     DeviceArray<unsigned long long> m_bad;
     PinnedArray<T> m_stage, m_targets[2];
@@ -465,7 +520,7 @@ private:
     int m_nextTargets = 0;
     PassTimer m_timer;
     StepArrays<T> m_d;
-    std::vector<std::unique_ptr<ElementPass<T>>> m_passes;  ///< one per material group (StepSetup::groups)
+    std::vector<std::unique_ptr<ElementPass<T>>> m_passes;  ///< one per material group (StepSetup::groups), or the springs
     FaceParams<T> m_q;  ///< the pressures of the step (setPressures)
 };
 

@@ -137,7 +137,14 @@ core::LayoutBytes CudaStep::layoutBytes() const {
         const bool central = b.setup.scheme == StepSetup::Scheme::CentralDifference;
         // element kernels: connectivity, rest data, and the forces of their slots, written, then read
         // by the node kernel
-        out.elementData += nT * (4 * I + 10 * T + 2 * 12 * T) + nH * (8 * I + 38 * T + 2 * 24 * T);
+        // (tetrahedra: TLED's dN and volume, or HEML's rest edges, G, 1 / det V, volume and the
+        // fibres' V^-1 a0 or the springs' shares and rest lengths)
+        const StepSetup& st = b.setup;
+        const size_t tetRest = st.form == StepSetup::Form::TLED
+                                   ? 10 * nT
+                                   : st.eV.size() + st.eG.size() + st.eInvDetV.size() + st.vol.size() + st.ew4.size() + st.ew6.size() +
+                                         st.ekk.size() + st.elen0.size();
+        out.elementData += nT * (4 * I + 2 * 12 * T) + tetRest * T + nH * (8 * I + 38 * T + 2 * 24 * T);
         // the Prony states, read and written in place
         out.elementData += (nT + nH) * 2 * 6 * static_cast<size_t>(b.setup.pronyTerms()) * T;
         // the fibre directions per element (3 per direction), and the groups' element lists

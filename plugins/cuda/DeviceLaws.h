@@ -1,9 +1,9 @@
 #pragma once
 /// The laws the device step runs, in one list: every built-in law (materials::BuiltinMaterials,
-/// each tested in test_cuda_emulation against TLEDForceField). Each costs two element kernels
-/// (tetrahedra, hexahedra) per precision and variant in the .cu file (elastic or relaxed, over the
-/// whole mesh or a group's list; with fibres per element for the laws that read one: nvcc time in
-/// every build). A material not in it (a user's law), for all elements or a group's, is a located
+/// each tested in test_cuda_emulation against TLEDForceField and HEMLForceField). Each costs three
+/// element kernels (TLED's tetrahedra and hexahedra, HEML's tetrahedra) per precision and variant
+/// in the .cu file (elastic or relaxed, over the whole mesh or a group's list; for TLED, with fibres
+/// per element for the laws that read one: nvcc time in every build). A material not in it (a user's law), for all elements or a group's, is a located
 /// error naming it (CudaStep), never a host fallback.
 #include "fascia/elements/LawDispatch.h"
 #include "fascia/materials/BuiltinMaterials.h"

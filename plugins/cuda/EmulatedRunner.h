@@ -15,6 +15,7 @@ public:
         forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
             m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>>>(s, g, law));
         });
+        if (s.springs) m_passes.push_back(std::make_unique<SpringPass>());
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
@@ -84,7 +85,7 @@ private:
     struct LawPass final : Pass {
         LawPass(const StepSetup& s, const StepSetup::Group& g, const Law& law)
             : p(elementParams<T>(s, g, law)), listed(s.groups.size() > 1), tets(g.tets), hexes(g.hexes),
-              fibres(s.fibresPerElement && (detail::Uses<Law>::i4 || detail::Uses<Law>::i6)) {}
+              fibres(s.fibresPerElement && (detail::Uses<Law>::i4 || detail::Uses<Law>::i6)), edges(s.form == StepSetup::Form::Edges) {}
         void run(const StepArrays<T>& d) override {
             if (p.prony.series > 0) fibres ? loop<true, true>(d) : loop<true, false>(d);
             else fibres ? loop<false, true>(d) : loop<false, false>(d);
@@ -94,18 +95,31 @@ private:
         template <bool Relaxed, bool PerElementFibres>
         void loop(const StepArrays<T>& d) const {
             const int nT = listed ? static_cast<int>(tets.size()) : d.nTets, nH = listed ? static_cast<int>(hexes.size()) : d.nHexes;
-            for (int k = 0; k < nT; ++k) tetForces<Relaxed, PerElementFibres>(d, p, listed ? tets[static_cast<size_t>(k)] : k);
+            for (int k = 0; k < nT; ++k) {
+                const int e = listed ? tets[static_cast<size_t>(k)] : k;
+                if (edges) edgeForces<Relaxed>(d, p, e);  // (HEML: its fibres are per element always, in ew4, ew6)
+                else tetForces<Relaxed, PerElementFibres>(d, p, e);
+            }
             for (int k = 0; k < nH; ++k) hexForces<Relaxed, PerElementFibres>(d, p, listed ? hexes[static_cast<size_t>(k)] : k);
         }
         ElementParams<Law, T> p;
         bool listed;
         std::vector<int> tets, hexes;
         bool fibres;
+        bool edges;  ///< HEML's edge form on the tetrahedra (StepSetup::Form::Edges)
+    };
+    /// HEML's mass-spring mode over every tetrahedron.
+    struct SpringPass final : Pass {
+        void run(const StepArrays<T>& d) override {
+            for (int e = 0; e < d.nTets; ++e) springForces(d, e);
+        }
+        PronyParams<T>& prony() override { return none; }
+        PronyParams<T> none;  ///< (no series in this mode)
     };
     StepArraysHost<T> m_dev;  ///< the "device" copy
     FaceParams<T> m_q;        ///< the pressures of the step (setPressures)
     bool m_central;           ///< CentralDifference, else SemiImplicitEuler
-    std::vector<std::unique_ptr<Pass>> m_passes;  ///< one per material group (StepSetup::groups)
+    std::vector<std::unique_ptr<Pass>> m_passes;  ///< one per material group (StepSetup::groups), or the springs
 };
 
 } // namespace fascia::cuda

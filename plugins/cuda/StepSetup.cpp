@@ -2,6 +2,7 @@
 
 #include "DeviceLaws.h"
 #include "fascia/elements/FibreField.h"
+#include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/materials/RelaxationSplit.h"
@@ -184,6 +185,24 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
     readSeries(ff, s);
 }
 
+/// The materials and the options of the HEML force field (HEMLForceField.cpp init), checked as
+/// readTLED does: its mass-spring mode (`stiffness`, no material), else a material per group or one
+/// for all, fibre arrays, and one Prony series (HEMLForceField takes the first of its node).
+void readHEML(const core::BaseForceField& ff, StepSetup& s) {
+    s.form = StepSetup::Form::Edges;
+    if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
+    const auto* k = paramOf<core::Param<double>>(ff, "stiffness");
+    if (!k) unsupported(ff, "this HEMLForceField (its parameters are not the ones the device step knows)");
+    s.springs = k->isSet();
+    if (s.springs) return;  // (HEMLForceField refuses a material and a Prony series in this mode)
+    const size_t nT = ff.tetrahedra() ? ff.tetrahedra()->size() : 0;
+    const MeshData* mesh = meshOf(ff);
+    const std::vector<const materials::BaseMaterial*> cell = readGroups(ff, mesh, nT, 0, s);
+    readFibres(ff, mesh, cell, nT, s);
+    readSeries(ff, s);
+    if (s.series.size() > 1) unsupported(*s.series[1].prony, "a second ViscoelasticProny beside a HEMLForceField (it takes one)");
+}
+
 /// The faces of the SurfacePressure components (s.pressures), in their order: node indices, rest
 /// differences from the first corner, and their load (StepArrays tri, quad, ...).
 void pressureFaces(const Positions& X, StepSetup& s) {
@@ -245,6 +264,69 @@ void tetGeometry(const core::BaseForceField& ff, const Positions& X, const Tetra
         for (int a = 0; a < 3; ++a)
             for (int i = 0; i < 3; ++i) s.dN[static_cast<size_t>(3 * a + i) * n + e] = rest.DmInv[e](a, i);
     }
+}
+
+/// The fibre direction w (0: a0, 1: b0) of each tetrahedron: its own (StepSetup fa, fb) or its
+/// material group's.
+std::vector<Vec3> tetFibres(const StepSetup& s, int w, size_t n) {
+    std::vector<Vec3> dir(n, Vec3::Zero());
+    for (const StepSetup::Group& g : s.groups) {
+        const elements::Vec33<double>& d = w == 0 ? g.a0 : g.b0;
+        const Vec3 v(d.x, d.y, d.z);
+        if (g.tets.empty() && s.groups.size() == 1) std::fill(dir.begin(), dir.end(), v);
+        for (int e : g.tets) dir[static_cast<size_t>(e)] = v;
+    }
+    const std::vector<double>& own = w == 0 ? s.fa : s.fb;
+    if (s.fibresPerElement && !own.empty())
+        for (size_t e = 0; e < n; ++e) dir[e] = Vec3(own[e], own[n + e], own[2 * n + e]);
+    return dir;
+}
+
+/// Rest geometry of HEML's tetrahedra (StepSetup::Form::Edges, HEMLForceField.cpp precompute):
+/// the rest edges, 1 / det V, G and the volumes (elements::edgeRest), V^-1 a0 and V^-1 b0 where a
+/// material reads them; in mass-spring mode each edge's share of the stiffness and rest length.
+void edgeGeometry(const core::BaseForceField& ff, const Positions& X, const Tetrahedra& tets, StepSetup& s) {
+    const size_t n = tets.size();
+    s.tet.resize(4 * n);
+    s.vol.resize(n);
+    s.eV.resize(9 * n);
+    s.eInvDetV.resize(n);
+    bool uses[2] = {false, false};
+    for (const StepSetup::Group& g : s.groups)
+        for (int w = 0; w < 2; ++w) uses[w] |= (g.material->uses() & (w == 0 ? materials::BaseMaterial::UsesI4 : materials::BaseMaterial::UsesI6)) != 0;
+    const std::vector<Vec3> dir[2] = {uses[0] ? tetFibres(s, 0, n) : std::vector<Vec3>{}, uses[1] ? tetFibres(s, 1, n) : std::vector<Vec3>{}};
+    s.eG.assign(s.springs ? 0 : 6 * n, 0.0);
+    s.ew4.assign(uses[0] ? 3 * n : 0, 0.0);
+    s.ew6.assign(uses[1] ? 3 * n : 0, 0.0);
+    s.ekk.assign(s.springs ? 6 * n : 0, 0.0);
+    s.elen0.assign(s.springs ? 6 * n : 0, 0.0);
+    const auto* k = paramOf<core::Param<double>>(ff, "stiffness");
+    const elements::EdgeShares shares(s.springs ? tets : Tetrahedra{});
+    for (size_t e = 0; e < n; ++e) {
+        const auto& t = tets[e];
+        for (size_t a = 0; a < 4; ++a) {
+            if (t[a] < 0 || static_cast<size_t>(t[a]) >= X.size()) ff.fail("tetrahedron " + std::to_string(e) + " has a node out of range");
+            s.tet[a * n + e] = t[a];
+        }
+        const elements::EdgeRest r = elements::edgeRest(X[size_t(t[0])], X[size_t(t[1])], X[size_t(t[2])], X[size_t(t[3])]);
+        s.vol[e] = std::abs(r.det) / 6.0;
+        s.eInvDetV[e] = 1.0 / r.det;
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < 3; ++i) s.eV[static_cast<size_t>(3 * a + i) * n + e] = r.V(i, a);
+        for (int q = 0; q < 6 && !s.springs; ++q) s.eG[static_cast<size_t>(q) * n + e] = r.G[q];
+        for (int w = 0; w < 2; ++w) {
+            if (!uses[w]) continue;
+            const Vec3 v = r.Vi * dir[w][e];
+            for (int i = 0; i < 3; ++i) (w == 0 ? s.ew4 : s.ew6)[static_cast<size_t>(i) * n + e] = v[i];
+        }
+        for (int q = 0; q < 6 && s.springs; ++q) {
+            const int a = t[static_cast<size_t>(elements::edgeA(q))], b = t[static_cast<size_t>(elements::edgeB(q))];
+            s.elen0[static_cast<size_t>(q) * n + e] = (X[size_t(b)] - X[size_t(a)]).norm();
+            s.ekk[static_cast<size_t>(q) * n + e] = k->get() / shares.count(a, b);
+        }
+    }
+    s.fa.clear();  // (in ew4, ew6 now: the edge form does not read the directions themselves)
+    s.fb.clear();
 }
 
 /// Rest geometry of the hexahedra: the uniform-strain dN_a/dX, volumes, hourglass vectors c_q and
@@ -331,15 +413,16 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     StepSetup s;
     core::BaseMechanicalState& state = *g.state;
     readIntegrator(*g.integrator, s);
-    const core::BaseForceField* tled = nullptr;
+    const core::BaseForceField* elastic = nullptr;  // the element force field: TLED or HEML
     const size_t nNodes = state.size();
     s.ext.assign(3 * nNodes, 0.0);
     Positions ext(nNodes, Vec3::Zero());
     for (core::BaseForceField* ff : g.forceFields) {
-        if (ff->className() == "TLEDForceField") {
-            if (tled) unsupported(*ff, "a second TLEDForceField on one state");
-            tled = ff;
-            readTLED(*ff, s);
+        if (ff->className() == "TLEDForceField" || ff->className() == "HEMLForceField") {
+            if (elastic) unsupported(*ff, "a second element force field (" + ff->className() + " beside " + elastic->className() + ") on one state");
+            elastic = ff;
+            if (ff->className() == "TLEDForceField") readTLED(*ff, s);
+            else readHEML(*ff, s);
         } else if (ff->className() == "ConstantForce") {
             const auto* c = ff->findParam("curve");
             const auto* load = dynamic_cast<const core::NodalLoad*>(ff);
@@ -356,13 +439,13 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
             unsupported(*ff, ff->className());
         }
     }
-    if (!tled) owner.fail("the state '" + state.path() + "' has no TLEDForceField: the device step runs TLED only");
+    if (!elastic) owner.fail("the state '" + state.path() + "' has no TLEDForceField or HEMLForceField: the device step runs those only");
     for (const core::BaseConstraint* c : g.constraints)
         if (c->className() != "FixedConstraint" && c->className() != "PrescribedDisplacement") unsupported(*c, c->className());
     const Tetrahedra noTets;
     const Hexahedra noHexes;
-    const Tetrahedra& tets = tled->tetrahedra() ? *tled->tetrahedra() : noTets;
-    const Hexahedra& hexes = tled->hexahedra() ? *tled->hexahedra() : noHexes;
+    const Tetrahedra& tets = elastic->tetrahedra() ? *elastic->tetrahedra() : noTets;
+    const Hexahedra& hexes = elastic->hexahedra() ? *elastic->hexahedra() : noHexes;
     // (the slots hold 8 e + a in 32 bits; every array index stays below 2^31)
     if (nNodes >= (size_t(1) << 29) || tets.size() + hexes.size() >= (size_t(1) << 26))
         owner.fail("the mesh is too large for the device step's 32-bit indices");
@@ -374,8 +457,9 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     s.nNodes = static_cast<int>(nNodes);
     s.nTets = static_cast<int>(tets.size());
     s.nHexes = static_cast<int>(hexes.size());
-    tetGeometry(*tled, state.x0(), tets, s);
-    hexGeometry(*tled, state.x0(), hexes, s);
+    if (s.form == StepSetup::Form::TLED) tetGeometry(*elastic, state.x0(), tets, s);
+    else edgeGeometry(*elastic, state.x0(), tets, s);
+    hexGeometry(*elastic, state.x0(), hexes, s);
     pressureFaces(state.x0(), s);
     if (tets.size() + hexes.size() + s.tri.size() / 3 + s.quad.size() / 4 >= (size_t(1) << 26))
         owner.fail("the mesh and its faces under pressure are too many for the device step's 32-bit slots");

@@ -25,6 +25,11 @@ struct StepSetup {
     int nTets = 0, nHexes = 0, nNodes = 0;
     std::vector<int> tet, hex;
     std::vector<double> dN, vol;
+    /// The element force field: TLEDForceField (dN), or HEMLForceField, whose tetrahedra run HEML's
+    /// edge form (eV, eG, eInvDetV, ew4, ew6; in its mass-spring mode ekk and elen0, no material)
+    enum class Form { TLED, Edges } form = Form::TLED;
+    bool springs = false;
+    std::vector<double> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
     std::vector<double> hdN, hgC, hvol, hgK;  ///< hexahedra
     /// faces under pressure (StepArrays tri, quad, triD, quadD, triLoad, quadLoad) and their loads
     int nTris = 0, nQuads = 0;
@@ -75,8 +80,9 @@ struct StepSetup {
 };
 
 /// Checks that the device step can run every component of the group (one TLEDForceField on
-/// tetrahedra and hexahedra with a built-in law of DeviceLaws.h per material, its groupMaterials and
-/// fibre arrays, and the ViscoelasticProny series of its node, FixedConstraint,
+/// tetrahedra and hexahedra, or one HEMLForceField, with a built-in law of DeviceLaws.h per
+/// material, its groupMaterials and fibre arrays, and the ViscoelasticProny series of its node; or
+/// HEMLForceField's mass-spring mode; FixedConstraint,
 /// PrescribedDisplacement, ConstantForce (at most kMaxLoads with a load curve), the masses,
 /// SemiImplicitEuler or CentralDifference) and builds its arrays. Anything else is a located error at
 /// the component, raised through owner's message style when the component has no location of its
@@ -93,6 +99,7 @@ struct StepArraysHost {
     int nTets = 0, nHexes = 0, nNodes = 0;
     std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
+    std::vector<T> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
     std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du;
     std::vector<T> fa, fb, hfa, hfb;  ///< the fibre directions per element (empty without fibre arrays)
     int nLoads = 0;
@@ -111,6 +118,13 @@ struct StepArraysHost {
         d.dN = dN.data();
         d.vol = vol.data();
         d.ef = ef.data();
+        d.eV = eV.data();
+        d.eG = eG.data();
+        d.eInvDetV = eInvDetV.data();
+        d.ew4 = ew4.data();
+        d.ew6 = ew6.data();
+        d.ekk = ekk.data();
+        d.elen0 = elen0.data();
         d.nHexes = nHexes;
         d.hex = hex.data();
         d.hdN = hdN.data();
@@ -165,6 +179,13 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.dN = conv(s.dN);
     h.vol = conv(s.vol);
     h.ef.assign(12 * static_cast<size_t>(s.nTets), T(0));
+    h.eV = conv(s.eV);
+    h.eG = conv(s.eG);
+    h.eInvDetV = conv(s.eInvDetV);
+    h.ew4 = conv(s.ew4);
+    h.ew6 = conv(s.ew6);
+    h.ekk = conv(s.ekk);
+    h.elen0 = conv(s.elen0);
     h.nHexes = s.nHexes;
     h.hex = s.hex;
     h.hdN = conv(s.hdN);

@@ -137,6 +137,10 @@ void HEMLForceField::init() {
 
     // viscoelasticity
     m_visco = node() ? node()->findLocal<viscoelastic::ViscoelasticProny>() : nullptr;
+    if (node())
+        if (const auto all = node()->findAllLocal<viscoelastic::ViscoelasticProny>(); all.size() > 1)
+            all[1]->fail("a second ViscoelasticProny beside HEMLForceField '" + name() + "': HEML relaxes one series (its terms on the part `apply` names)",
+                         {"put all the terms in one ViscoelasticProny (TLEDForceField takes one series per part)"});
     if (m_visco && d.massSpring) fail(m_stiffness, "ViscoelasticProny is not supported in mass-spring mode");
     // each part that relaxes must be stress-free at rest, or a body at rest creeps (RelaxationSplit.h)
     if (m_visco && !d.massSpring) {

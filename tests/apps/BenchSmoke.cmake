@@ -47,13 +47,15 @@ endif()
 if(FASCIA_CUDA)
   bench_matches("\"forcefield\": \"TLED\", .*\"elements\": 384, .*\"precision\": \"float\", \"device\": \"emulate\", .*\"element_steps_per_s\": [0-9.e+]+, \"bytes_per_element_step\": [0-9.]+, "
     --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate --precision float)
+  bench_matches("\"forcefield\": \"HEML\", .*\"elements\": 384, .*\"precision\": \"double\", \"device\": \"emulate\", .*\"element_steps_per_s\": [0-9.e+]+, \"bytes_per_element_step\": [0-9.]+, "
+    --forcefield HEML --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate)
   execute_process(COMMAND ${FASCIA_BENCH} --forcefield TLED --cube 4 --steps 5 --repeat 1 --device cuda
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
   if(NOT (rc EQUAL 0 AND out MATCHES "\"device\": \"cuda\"") AND NOT (rc EQUAL 2 AND err MATCHES "CudaStep.*no usable CUDA device"))
     message(FATAL_ERROR "fascia-bench --device cuda: exit ${rc}, ${out} ${err}")
   endif()
 endif()
-foreach(args "--device;opencl" "--device;cuda;--forcefield;TLED;--precision;mixed" "--device;cuda;--forcefield;HEML")
+foreach(args "--device;opencl" "--device;cuda;--forcefield;TLED;--precision;mixed" "--device;cuda;--contend")
   execute_process(COMMAND ${FASCIA_BENCH} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
   if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --(device|precision)")
     message(FATAL_ERROR "fascia-bench ${args}: exit ${rc}, ${err}")

@@ -112,9 +112,10 @@ inline std::string mixedElements() {
 }
 
 /// The parts of the cantilever scene that differ between cases: the mesh source, the material
-/// elements and the TLEDForceField's attributes beyond its name and J0.
+/// elements, the element force field's attributes beyond its name and J0, and its class.
 struct BodyParts {
     std::string mesh, materials, ff;
+    std::string forceField = "TLEDForceField";
 };
 
 /// The cantilever scene of these parts; `root` goes into the root node (a CudaStep), `body` into the
@@ -126,7 +127,7 @@ inline std::string scene(const BodyParts& parts, const std::string& root, const 
            "\n"
            "    <MechanicalObject name=\"mo\"/>\n"
            "    <LumpedMass density=\"1000\"/>\n    " +
-           integrator + "\n    " + parts.materials + "\n    <TLEDForceField name=\"ff\" J0=\"0.3\"" + parts.ff +
+           integrator + "\n    " + parts.materials + "\n    <" + parts.forceField + " name=\"ff\" J0=\"0.3\"" + parts.ff +
            "/>\n"
            "    <FixedConstraint name=\"clamp\" indices=\"0 1 2 3 4 5 6 7 8\"/>\n"
            "    <FixedConstraint name=\"roller\" indices=\"12 13\" directions=\"1 0 0\"/>\n"

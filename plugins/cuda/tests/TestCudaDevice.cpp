@@ -1,8 +1,9 @@
-// The device step through real CUDA launches, against TLEDForceField and SemiImplicitEuler as the
-// emulation test checks its kernel bodies on the CPU. Where no device is usable every case exits 77,
+// The device step through real CUDA launches, against TLEDForceField, HEMLForceField and the
+// integrators as the emulation tests check its kernel bodies on the CPU. Where no device is usable every case exits 77,
 // which ctest reports as skipped (SKIP_RETURN_CODE, plugins/cuda/CMakeLists.txt), never as passed.
 #include "CudaTestSupport.h"
 #include "GroupCases.h"
+#include "HEMLCases.h"
 #include "LoadCases.h"
 #include "ResidencyCases.h"
 
@@ -222,6 +223,55 @@ TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory of groups with 
     const BodyParts parts = groups::groupParts(groups::groupCase("three groups with fibre arrays"), Mesh::Mixed);
     const auto run = [&](int block) {
         auto sim = core::Simulation::fromString(scene(parts, "<CudaStep precision=\"" + precision + "\" blockSize=\"" + std::to_string(block) + "\"/>"));
+        for (int s = 0; s < 200; ++s) sim->step();
+        return sim->state("mo").x();
+    };
+    const Positions a = run(256);
+    for (int block : {32, 96, 1024}) {
+        CAPTURE(block);
+        CHECK(run(block) == a);
+    }
+}
+
+TEST_CASE("The GPU edge-form kernel gives HEML's forces for every law and the springs", "[CudaStep][HEML]") {
+    requireDevice();
+    heml::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+}
+
+TEST_CASE("CudaStep on the GPU follows HEMLForceField over 1000 steps, every law and the springs", "[CudaStep][HEML]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    heml::trajectoriesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("CudaStep on the GPU relaxes HEML as HEMLForceField does, either part or both, or refuses as it does", "[CudaStep][HEML][ViscoelasticProny]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    heml::relaxedFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("The GPU edge-form kernel gives HEML's forces with materials per group and fibre arrays", "[CudaStep][HEML][groupMaterials]") {
+    requireDevice();
+    heml::groupForcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+}
+
+TEST_CASE("CudaStep on the GPU follows HEMLForceField with materials per group and fibre arrays over 1000 steps",
+          "[CudaStep][HEML][groupMaterials]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    heml::groupsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+}
+
+TEST_CASE("CudaStep on the GPU gives bitwise the same HEML trajectory for any block size", "[CudaStep][HEML]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    const auto run = [&](int block) {
+        auto sim = core::Simulation::fromString(scene(heml::parts(deviceLaw("TransverselyIsotropic")),
+                                                      "<CudaStep precision=\"" + precision + "\" blockSize=\"" + std::to_string(block) + "\"/>", prony()));
         for (int s = 0; s < 200; ++s) sim->step();
         return sim->state("mo").x();
     };

@@ -16,6 +16,12 @@
 ///     from StepArrays fa, fb (the kernels' PerElementFibres, a compile-time choice, instantiated
 ///     for the laws that read a fibre only); a runner launches them once per material group, with
 ///     the group's law, over the group's element list (StepSetup::Group);
+///   HEML's element kernel (HEMLForceField, StepSetup::Form::Edges; tetrahedra): its current edges
+///     from the rest ones and u -> squared lengths, J, the invariants from G (HEML eq. (C.1)) -> the
+///     law's response -> link coefficients and volume terms (eq. (29), (C.2)-(C.4)), relaxed by its
+///     one Prony series as HEMLForceField relaxes them (eq. (18)-(20)) -> the nodal forces (eq.
+///     (12)-(13)), all of it fascia/elements/EdgeForm.h, written to the element's own slots (the
+///     same as TLED's tetrahedra); in mass-spring mode a spring per edge (eq. (38));
 ///   face kernel (a face under a SurfacePressure): its current edges from the rest ones and u ->
 ///     its follower load (fascia/elements/Pressure.h), written to its own slots;
 ///   node kernel: the sum of its (element, corner) slots in their fixed order, + external force
@@ -24,6 +30,7 @@
 ///     (at rest, or a PrescribedDisplacement's at t + dt).
 #include "fascia/cuda/StepLayout.h"
 #include "fascia/elements/BatchView.h"
+#include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Hourglass.h"
 #include "fascia/elements/Pressure.h"
 #include "fascia/elements/Relaxation.h"
@@ -205,6 +212,115 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
     T* out = d.hef + 24 * static_cast<size_t>(e);
     for (int a = 0; a < 8; ++a)
         for (int i = 0; i < 3; ++i) out[3 * a + i] = f.v[a][i][0];
+}
+
+namespace detail {
+
+/// The smallest squared length and |J| the edge form divides by (HEMLKernel.h kTiny).
+template <class T>
+FASCIA_HD constexpr T edgeTiny() {
+    if constexpr (sizeof(T) == sizeof(float)) return T(1e-30f);
+    else return T(1e-300);
+}
+
+/// The six current edges of tetrahedron e (EdgeForm.h): v_a = V_a + (u_a - u_0) for a = 1..3 from
+/// its rest edges eV, then v4 = v2 - v1, v5 = v3 - v2, v6 = v1 - v3 (HEML eq. (A.2)).
+template <class T>
+FASCIA_HD FASCIA_INLINE void currentEdges(const StepArrays<T>& d, int e, T ev[6][3]) {
+    const int n = d.nTets;
+    elements::NodalBatch<4, 1, T> u;
+    gatherCorners(d.tet, n, e, d.u, u);
+    for (int a = 1; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) ev[a - 1][i] = d.eV[(3 * (a - 1) + i) * n + e] + (u.v[a][i][0] - u.v[0][i][0]);
+    for (int i = 0; i < 3; ++i) {
+        ev[3][i] = ev[1][i] - ev[0][i];
+        ev[4][i] = ev[2][i] - ev[1][i];
+        ev[5][i] = ev[0][i] - ev[2][i];
+    }
+}
+
+/// The element's nodal forces f (EdgeForm.h edgeNodalForces) written to its own slots of ef.
+template <class T>
+FASCIA_HD FASCIA_INLINE void storeCorners(const StepArrays<T>& d, int e, const T f[4][3]) {
+    T* out = d.ef + 12 * static_cast<size_t>(e);
+    for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) out[3 * a + i] = f[a][i];
+}
+
+/// HEML's relaxation of the link coefficients g by the one series of q (HEMLKernel.h relax, HEML
+/// eq. (18)-(20)): the volume terms shifted (q.restShift), the relaxed part R_k, then for each term
+/// Y = A R + B Y (element e's states, advanced in place) and g_k -= sum of the terms.
+template <class T>
+FASCIA_HD FASCIA_INLINE void relaxLinks(const PronyParams<T>& q, const elements::Sym33<T>& D, T J, T V, T J0, T invDetV, T* Y, int n,
+                                        int e, T g[6], T& Qi, T& Qv) {
+    if (q.restShift != T(0)) elements::shiftVolumeTerms(Qi, Qv, V, q.restShift, J0, J);
+    const T wIso = q.iso[0] ? T(1) : T(0), wVol = q.vol[0] ? T(1) : T(0);
+    T R[6], sum[6] = {0, 0, 0, 0, 0, 0};
+    elements::relaxedLinks(D, J, wIso * Qi + wVol * Qv, invDetV, wIso, g, edgeTiny<T>(), R);
+    for (int t = 0; t < kMaxTerms && t < q.terms[0]; ++t)
+        for (int c = 0; c < 6; ++c) {
+            T& y = Y[(6 * t + c) * n + e];
+            y = elements::pronyState(q.A[0][t], R[c], q.B[0][t], y);
+            sum[c] += y;
+        }
+    for (int c = 0; c < 6; ++c) g[c] -= sum[c];
+}
+
+} // namespace detail
+
+/// HEML (HEMLForceField) on tetrahedron e, with the law of p (e's material group), written to its
+/// own slots of ef: its current edges, their squared lengths l_k, J, the invariants from G and the
+/// fibres' w (eq. (C.1)), the law's response (materials::evaluateLaw, section 4.4 below J0), the link
+/// coefficients g_k and the volume terms (eq. (29), (C.2)-(C.4)), relaxed by p.prony's one series
+/// (Relaxed), and the nodal forces (eq. (12)-(13)): fascia/elements/EdgeForm.h throughout.
+template <bool Relaxed = false, class Law, class T>
+FASCIA_HD FASCIA_INLINE void edgeForces(const StepArrays<T>& d, const ElementParams<Law, T>& p, int e) {
+    const int n = d.nTets;
+    T ev[6][3], l[6];
+    detail::currentEdges(d, e, ev);
+    for (int k = 0; k < 6; ++k) l[k] = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
+    const T invDetV = d.eInvDetV[e], V = d.vol[e];
+    const elements::Sym33<T> D = elements::gramOfLengths(l);
+    T G[6], H[6];
+    for (int q = 0; q < 6; ++q) G[q] = d.eG[q * n + e];
+    materials::InvariantsT<T> in;
+    elements::edgeInvariants(D, G, in.I1, in.I2, H);
+    in.J = elements::edgeDeterminant(ev) * invDetV;
+    T w4[3] = {0, 0, 0}, w6[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+        if constexpr (detail::Uses<Law>::i4) w4[i] = d.ew4[i * n + e];
+        if constexpr (detail::Uses<Law>::i6) w6[i] = d.ew6[i * n + e];
+    }
+    if constexpr (detail::Uses<Law>::i4) in.I4 = elements::edgeFibreInvariant(D, w4[0], w4[1], w4[2]);
+    if constexpr (detail::Uses<Law>::i6) in.I6 = elements::edgeFibreInvariant(D, w6[0], w6[1], w6[2]);
+    materials::ResponseT<T> r;
+    materials::evaluateLaw(p.law, in, static_cast<double>(p.J0), r);
+    T Sg[6], g[6];
+    elements::edgeStress(G, H, in.I1, r.dI1, r.dI2, Sg);
+    if constexpr (detail::Uses<Law>::i4) elements::addFibreTerm(Sg, w4[0], w4[1], w4[2], r.dI4);
+    if constexpr (detail::Uses<Law>::i6) elements::addFibreTerm(Sg, w6[0], w6[1], w6[2], r.dI6);
+    elements::linkCoefficients(Sg, V, g);
+    T Qi = V * r.dJiso, Qv = V * r.dJvol;
+    if constexpr (Relaxed) detail::relaxLinks(p.prony, D, in.J, V, p.J0, invDetV, d.Y, n, e, g, Qi, Qv);
+    T f[4][3];
+    elements::edgeNodalForces(g, (Qi + Qv) * invDetV, ev, f);
+    detail::storeCorners(d, e, f);
+}
+
+/// HEML's mass-spring mode (eq. (38)-(41)) on tetrahedron e: a spring per edge (its share ekk of the
+/// stiffness, rest length elen0), written to its own slots of ef.
+template <class T>
+FASCIA_HD FASCIA_INLINE void springForces(const StepArrays<T>& d, int e) {
+    const int n = d.nTets;
+    T ev[6][3], g[6], W = 0;
+    detail::currentEdges(d, e, ev);
+    for (int k = 0; k < 6; ++k) {
+        const T L2 = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
+        g[k] = elements::springLink(L2 > detail::edgeTiny<T>() ? L2 : detail::edgeTiny<T>(), d.ekk[k * n + e], d.elen0[k * n + e], W);
+    }
+    T f[4][3];
+    elements::edgeNodalForces(g, T(0), ev, f);
+    detail::storeCorners(d, e, f);
 }
 
 /// The follower pressure on face k of the faces under pressure (the triangles, then the

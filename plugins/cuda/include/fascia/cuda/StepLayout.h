@@ -21,6 +21,16 @@ namespace fascia::cuda {
 ///                                and corner so that the node kernel reads a slot's three
 ///                                components from one 32-byte sector (a row per component took
 ///                                three), and a warp's writes cover one contiguous range
+/// With HEMLForceField instead of TLED (StepSetup::Form::Edges: HEML's edge form, fascia/elements/
+/// EdgeForm.h), tetrahedron e keeps tet, vol and ef, and reads instead of dN:
+///   eV[(3 (a-1) + i) nTets + e]  rest edge V_a = X_a - X_0 (a = 1..3): the current edges are
+///                                these plus u_a - u_0 (accurate in float, as for the faces)
+///   eG[q nTets + e]              G = V^-1 V^-T (xx yy zz xy yz xz)
+///   eInvDetV[e]                  1 / det V (signed)
+///   ew4[i nTets + e], ew6[...]   V^-1 a0 and V^-1 b0 of its fibre directions (empty when no
+///                                material reads I4, I6)
+///   ekk[k nTets + e], elen0[...] mass-spring mode (HEML eq. (38)): the stiffness share and rest
+///                                length of edge k (empty otherwise)
 /// Hexahedron e (uniform strain with hourglass control, fascia/elements/Hourglass.h), corner a (0..7):
 ///   hex[a nHexes + e]            node of corner a (VTK order)
 ///   hdN[(3 a + i) nHexes + e]    volume-averaged dN_a/dX_i
@@ -40,6 +50,8 @@ namespace fascia::cuda {
 ///                                kernel, once per element pass (zero at the start; empty without
 ///                                a series)
 ///   hY[(6 k + c) nHexes + e]     the same for hexahedron e
+///                                (with HEML: one series, and c counts the six link coefficients
+///                                R_k of its relaxed part instead, HEMLForceField.h)
 /// Faces under a SurfacePressure (its follower load, fascia/elements/Pressure.h), triangle f and
 /// quadrilateral f, corner a:
 ///   tri[a nTris + f], quad[a nQuads + f]   node of corner a (turned outwards)
@@ -74,6 +86,13 @@ struct StepArrays {
     const T* dN = nullptr;
     const T* vol = nullptr;
     T* ef = nullptr;
+    const T* eV = nullptr;
+    const T* eG = nullptr;
+    const T* eInvDetV = nullptr;
+    const T* ew4 = nullptr;
+    const T* ew6 = nullptr;
+    const T* ekk = nullptr;
+    const T* elen0 = nullptr;
     int nHexes = 0;
     const int* hex = nullptr;
     const T* hdN = nullptr;
