@@ -461,6 +461,17 @@ TEST_CASE("set-up errors are located and say what to do", "[HEMLForceField]") {
         addMaterial(s.root, "NeoHookean", "mat");
         CHECK_THROWS_WITH(s.init(), Catch::Contains("degenerate"));
     }
+    SECTION("a second ViscoelasticProny (HEML relaxes one series; it took the first and ignored the rest)") {
+        Scene s(mesh);
+        addMaterial(s.root, "NeoHookean", "mat");
+        for (const char* name : {"shear", "bulk"}) {
+            auto& visco = s.root.add<viscoelastic::ViscoelasticProny>(name);
+            visco.findParam("alpha")->read("0.4", {});
+            visco.findParam("tau")->read("0.05", {});
+        }
+        CHECK_THROWS_WITH(s.init(), Catch::Contains("ViscoelasticProny 'bulk'") && Catch::Contains("a second ViscoelasticProny") &&
+                                        Catch::Contains("one ViscoelasticProny"));
+    }
     SECTION("a node index out of range") {
         MeshData bad = mesh;
         bad.tetrahedra[0][2] = 99;
