@@ -320,11 +320,12 @@ public:
         check(cudaMemcpyAsync(m_bad.get(), &kNone, sizeof kNone, cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync to the device");
         wait();
     }
-    void getState(std::vector<double>& u, std::vector<double>& v) override {
+    void getState(std::vector<double>& u, std::vector<double>& v, std::vector<double>& r) override {
         const size_t n = m_u.size();
-        const T* h = staged({{m_u.get(), n}, {m_v.get(), n}});
+        const T* h = staged({{m_u.get(), n}, {m_v.get(), n}, {m_react.get(), n}});
         u.assign(h, h + n);
         v.assign(h + n, h + 2 * n);
+        r.assign(h + 2 * n, h + 3 * n);
     }
     void getIncrements(std::vector<double>& du) override {
         const T* h = staged({{m_du.get(), m_du.size()}});
@@ -451,6 +452,7 @@ private:
         m_tu.upload(h.tu, s);
         m_tv.upload(h.tv, s);
         m_du.upload(h.du, s);
+        m_react.upload(h.react, s);
         m_f.upload(h.u, s);
         m_bad.upload(&kNone, 1, s);
         m_d.nTets = h.nTets;
@@ -502,6 +504,7 @@ private:
         m_d.u = m_u.get();
         m_d.v = m_v.get();
         m_d.du = m_du.get();
+        m_d.react = m_react.get();
         m_d.bad = m_bad.get();
     }
     int m_block;
@@ -509,7 +512,7 @@ private:
     cudaStream_t m_stream = nullptr;
     DeviceArray<int> m_tet, m_hex, m_slotStart, m_tri, m_quad, m_triLoad, m_quadLoad;
     DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du, m_react;
     DeviceArray<T> m_fa, m_fb, m_hfa, m_hfb;  ///< the fibre directions per element (empty without fibre arrays)
     DeviceArray<T> m_eV, m_eG, m_eInvDetV, m_ew4, m_ew6, m_ekk, m_elen0;  ///< HEML's (StepSetup::Form::Edges)
     DeviceArray<std::uint32_t> m_hold;

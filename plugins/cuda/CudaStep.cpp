@@ -94,14 +94,18 @@ void CudaStep::fetch(core::MechanicalGroup& g) {
     Body& b = body(g);
     if (b.onHost) return;
     check(b, g);
-    b.runner->getState(b.u, b.v);
+    b.runner->getState(b.u, b.v, b.r);
     Positions& x = g.state->x();
     Positions& v = g.state->v();
+    Positions& r = g.state->reaction();
     const Positions& X = g.state->x0();
+    r.resize(x.size());
     for (size_t i = 0; i < x.size(); ++i)
         for (int c = 0; c < 3; ++c) {
-            x[i][c] = X[i][c] + b.u[3 * i + static_cast<size_t>(c)];
-            v[i][c] = b.v[3 * i + static_cast<size_t>(c)];
+            const size_t k = 3 * i + static_cast<size_t>(c);
+            x[i][c] = X[i][c] + b.u[k];
+            v[i][c] = b.v[k];
+            r[i][c] = b.r[k];  // (the reactions of the step's start, as MechanicalGroup::computeForces leaves them)
         }
     b.xSeen = x;
     b.vSeen = v;

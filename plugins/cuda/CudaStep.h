@@ -62,6 +62,7 @@ private:
         CentralRule central;
         std::vector<double> tu, tv;  ///< the targets of the step (motionTargets)
         std::vector<double> u, v, du;  ///< the device's state when the host holds it, and the increments
+        std::vector<double> r;          ///< the reactions of the last fetch (StepArrays::react)
         std::vector<double> Y;          ///< the Prony states read from a checkpoint (push uploads them)
         viscoelastic::HistoryClock clock;  ///< when the Prony history advances, over what time (as TLEDForceField)
         std::vector<double> A, B;          ///< the Prony coefficients the runner holds

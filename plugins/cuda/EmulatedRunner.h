@@ -22,9 +22,10 @@ public:
         m_dev.v.assign(v.begin(), v.end());
         m_dev.bad = ~0ull;
     }
-    void getState(std::vector<double>& u, std::vector<double>& v) override {
+    void getState(std::vector<double>& u, std::vector<double>& v, std::vector<double>& r) override {
         u.assign(m_dev.u.begin(), m_dev.u.end());
         v.assign(m_dev.v.begin(), m_dev.v.end());
+        r.assign(m_dev.react.begin(), m_dev.react.end());
     }
     void getPronyStates(std::vector<double>& Y) override {
         Y.assign(m_dev.Y.begin(), m_dev.Y.end());

@@ -17,8 +17,9 @@ public:
     /// Uploads displacements u = x - X and velocities (3 per node, double), and clears the record
     /// of a state that was not finite (a restore, a replay).
     virtual void setState(const std::vector<double>& u, const std::vector<double>& v) = 0;
-    /// Downloads them, after every step launched so far.
-    virtual void getState(std::vector<double>& u, std::vector<double>& v) = 0;
+    /// Downloads them, after every step launched so far, with the reactions of the last node pass
+    /// (StepArrays::react, 3 per node).
+    virtual void getState(std::vector<double>& u, std::vector<double>& v, std::vector<double>& r) = 0;
     /// CentralDifference's increments u(n) - u(n-1) (StepArrays::du), 3 per node: down and up.
     virtual void getIncrements(std::vector<double>& du) = 0;
     virtual void setIncrements(const std::vector<double>& du) = 0;

@@ -100,7 +100,7 @@ struct StepArraysHost {
     std::vector<int> tet, hex, slotStart;
     std::vector<std::uint32_t> slots;
     std::vector<T> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
-    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du;
+    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du, react;
     std::vector<T> fa, fb, hfa, hfb;  ///< the fibre directions per element (empty without fibre arrays)
     int nLoads = 0;
     int nTris = 0, nQuads = 0;
@@ -161,6 +161,7 @@ struct StepArraysHost {
         d.u = u.data();
         d.v = v.data();
         d.du = du.data();
+        d.react = react.data();
         d.bad = &bad;
         return d;
     }
@@ -220,6 +221,7 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.tu.assign(s.targetAt.size(), T(0));
     h.tv.assign(s.targetAt.size(), T(0));
     h.du.assign(3 * static_cast<size_t>(s.nNodes), T(0));
+    h.react.assign(3 * static_cast<size_t>(s.nNodes), T(0));
     return h;
 }
 

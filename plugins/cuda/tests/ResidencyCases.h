@@ -124,4 +124,31 @@ inline void restartIsBitwise(const std::string& root) {
     CHECK(sim->state("mo").v() == whole.second);
 }
 
+/// The constraints' reactions (state reaction(), what a Monitor's reaction columns and a haptic
+/// loop read) after 400 steps with the clamp, the roller, the prescribed lift and a Prony series,
+/// with either integrator, against the CPU's: to `tol` of the largest reaction (the clamp carries
+/// the pull and the body's weight, the lift its own load); a node no constraint holds has none.
+inline void reactionsFollow(const std::string& root, double tol) {
+    const std::string integrator = GENERATE(as<std::string>{}, "<SemiImplicitEuler damping=\"5\"/>", "<CentralDifference damping=\"5\"/>");
+    CAPTURE(integrator);
+    const std::string body = kLift + prony();
+    const auto reactions = [&](const std::string& r) {
+        auto sim = core::Simulation::fromString(scene(deviceLaw("TransverselyIsotropic"), r, body, integrator, Mesh::Mixed));
+        sim->run(400);
+        return sim->state("mo").reaction();
+    };
+    const Positions cpu = reactions(""), dev = reactions(root);
+    REQUIRE(dev.size() == cpu.size());
+    double err = 0, largest = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+        err = std::max(err, (dev[i] - cpu[i]).norm());
+        largest = std::max(largest, cpu[i].norm());
+    }
+    CAPTURE(sci(err), sci(largest));
+    CHECK(largest > 1e-3);  // (the pull alone is 9 x 4.6e-3 N)
+    CHECK(err <= tol * largest);
+    for (size_t i : {size_t(20), size_t(27)}) CHECK(dev[i] == Vec3::Zero());  // (free nodes)
+    CHECK(dev[12][0] != 0.0);  // the roller holds x
+}
+
 } // namespace cudatest::residency

@@ -181,6 +181,13 @@ TEST_CASE("CudaStep on the GPU restarts from a checkpoint bitwise as the run tha
     residency::restartIsBitwise("<CudaStep/>");
 }
 
+TEST_CASE("CudaStep on the GPU gives the constraints' reactions as the CPU does", "[CudaStep]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    residency::reactionsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+}
+
 TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");

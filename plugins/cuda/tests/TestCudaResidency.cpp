@@ -24,3 +24,9 @@ TEST_CASE("CudaStep emulated names the first step whose state is not finite, wha
 TEST_CASE("CudaStep emulated restarts from a checkpoint bitwise as the run that wrote it", "[CudaStep]") {
     residency::restartIsBitwise("<CudaStep emulate=\"true\"/>");
 }
+
+TEST_CASE("CudaStep emulated gives the constraints' reactions as the CPU does", "[CudaStep]") {
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    residency::reactionsFollow("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+}

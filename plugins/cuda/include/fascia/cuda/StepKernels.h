@@ -374,7 +374,7 @@ FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, i
 }
 
 /// The force on node `node`: its slots, the external force, the curved loads and m g; the held axes' components
-/// removed (the constraints' projectForces).
+/// removed (the constraints' projectForces) and kept, negated, as their reactions (StepArrays::react).
 template <class T>
 FASCIA_HD FASCIA_INLINE void nodeForce(const StepArrays<T>& d, const NodeParams<T>& p, int node, T f[3]) {
     const elements::Vec33<T> fi = gatherForce(d, node);
@@ -382,7 +382,12 @@ FASCIA_HD FASCIA_INLINE void nodeForce(const StepArrays<T>& d, const NodeParams<
     T g[3] = {fi.x + d.ext[3 * node + 0] + m * p.g[0], fi.y + d.ext[3 * node + 1] + m * p.g[1], fi.z + d.ext[3 * node + 2] + m * p.g[2]};
     for (int k = 0; k < kMaxLoads && k < d.nLoads; ++k)
         for (int i = 0; i < 3; ++i) g[i] += p.load[k] * d.loadF[3 * (static_cast<size_t>(k) * d.nNodes + node) + i];
-    for (int i = 0; i < 3; ++i) f[i] = d.hold[3 * node + i] != 0 ? T(0) : g[i];
+    for (int i = 0; i < 3; ++i) {
+        f[i] = g[i];
+        if (d.hold[3 * node + i] == 0) continue;
+        d.react[3 * node + i] = -g[i];
+        f[i] = T(0);
+    }
 }
 
 /// Axis i of node `node` at the end of the step: a held axis is put at its constraint's position

@@ -76,6 +76,9 @@ namespace fascia::cuda {
 ///                                constraint that holds the axis decides, as in projectState)
 ///   tu[j], tv[j]                 the targets' displacement and velocity at t + dt (set every step)
 ///   du[3 n + i]                  CentralDifference: the increment u(n) - u(n-1) of the last step
+///   react[3 n + i]               the reaction at a held axis: minus the force its constraint
+///                                removed in the last node pass (MechanicalGroup::applyConstraints'
+///                                f after - f before); 0 on a free axis (never written)
 ///   bad[0]                       the first step whose node pass left a u or v that is not finite
 ///                                (all ones: none; the state stays on the device, so the host reads
 ///                                this one number to check it: CudaStep's checkEvery)
@@ -128,6 +131,7 @@ struct StepArrays {
     T* u = nullptr;
     T* v = nullptr;
     T* du = nullptr;
+    T* react = nullptr;
     unsigned long long* bad = nullptr;
 };
 
