@@ -23,6 +23,9 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
         b.runner = makeCudaRunner(b.setup, p, m_blockSize.get());
     }
     b.kick.halfStepStart = b.setup.halfStepStart;
+    if (!b.setup.series.empty())
+        for (core::BaseForceField* ff : g.forceFields)
+            if (auto* h = dynamic_cast<viscoelastic::ElementHistory*>(ff)) b.history = h;
     b.du.assign(3 * g.state->size(), 0.0);
     upload(b, g);
     m_bodies.push_back(std::move(b));
@@ -107,6 +110,15 @@ void CudaStep::fetch(core::MechanicalGroup& g) {
             v[i][c] = b.v[k];
             r[i][c] = b.r[k];  // (the reactions of the step's start, as MechanicalGroup::computeForces leaves them)
         }
+    if (b.history) {
+        // the stress output of the element force field reads the device's Prony states
+        std::vector<double> Y, Yh;
+        b.runner->getPronyStates(Y);
+        const size_t nt = 6 * static_cast<size_t>(b.setup.pronyTerms()) * static_cast<size_t>(b.setup.nTets);
+        Yh.assign(Y.begin() + static_cast<std::ptrdiff_t>(nt), Y.end());
+        Y.resize(nt);
+        b.history->adoptHistory(Y, Yh, b.clock);
+    }
     b.xSeen = x;
     b.vSeen = v;
     b.onHost = true;

@@ -20,7 +20,7 @@
 #include "StepRunner.h"
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
-#include "fascia/viscoelastic/HistoryClock.h"
+#include "fascia/viscoelastic/ElementHistory.h"
 
 #include <memory>
 #include <vector>
@@ -65,6 +65,9 @@ private:
         std::vector<double> r;          ///< the reactions of the last fetch (StepArrays::react)
         std::vector<double> Y;          ///< the Prony states read from a checkpoint (push uploads them)
         viscoelastic::HistoryClock clock;  ///< when the Prony history advances, over what time (as TLEDForceField)
+        /// the element force field, which takes the Prony states back at a fetch for its stress
+        /// output (null without a series)
+        viscoelastic::ElementHistory* history = nullptr;
         std::vector<double> A, B;          ///< the Prony coefficients the runner holds
         std::vector<double> nextA, nextB;  ///< those of the step
         bool restored = false;          ///< u, v and du come from a checkpoint: push uploads them as they are

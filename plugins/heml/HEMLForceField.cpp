@@ -375,6 +375,19 @@ void HEMLForceField::restoreState(core::StateReader& in) {
     d.clock.restore(in);
 }
 
+void HEMLForceField::adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) {
+    HEMLData& d = *m_data;
+    const size_t n = d.nElements, terms = static_cast<size_t>(d.nTerms);
+    if (Yt.size() != 6 * terms * n || !Yh.empty())
+        elements::runtimeError(*this, "a step backend handed back " + std::to_string(Yt.size() + Yh.size()) + " Prony states for its " +
+                                          std::to_string(terms) + " terms and " + std::to_string(n) + " tetrahedra");
+    for (size_t t = 0; t < terms; ++t)
+        for (size_t q = 0; q < 6; ++q)
+            for (size_t e = 0; e < n; ++e) d.Ycur[t * 6 + q][static_cast<size_t>(d.slotOf[e])] = Yt[(6 * t + q) * n + e];
+    d.Yprev = d.Ycur;
+    d.clock = clock;
+}
+
 void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
     checkState(state);
     if (f.size() != state.size()) elements::runtimeError(*this, "force array of the wrong size");

@@ -315,6 +315,34 @@ void TLEDForceField::restoreState(core::StateReader& in) {
     im.clock.restore(in);
 }
 
+void TLEDForceField::adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) {
+    Impl& im = *m_impl;
+    size_t terms = 0;
+    for (const ViscoSet& vs : im.visco) terms += static_cast<size_t>(vs.terms);
+    if (Yt.size() != 6 * terms * im.tet.size() || Yh.size() != 6 * terms * im.hex.size())
+        elements::runtimeError(*this, "a step backend handed back " + std::to_string(Yt.size() + Yh.size()) + " Prony states for its " +
+                                          std::to_string(terms) + " terms and " + std::to_string(im.tet.size() + im.hex.size()) + " elements");
+    size_t k0 = 0;  // the first term of the series among all
+    for (ViscoSet& vs : im.visco) {
+        const size_t nt = static_cast<size_t>(vs.terms);
+        for (const Block& b : im.blocks) {
+            const bool tets = b.kind == 0;
+            const std::vector<int>& orig = tets ? im.tet.orig : im.hex.orig;
+            const std::vector<double>& Y = tets ? Yt : Yh;
+            const size_t n = tets ? im.tet.size() : im.hex.size();
+            for (size_t i = b.begin; i < b.end; ++i) {
+                // (the batch slot of internal element i: TLEDKernel.h; term t, component c at ((m terms + t) 6 + c) kBatch + lane)
+                const size_t m = b.batchBase + (i - b.begin) / kBatch, lane = (i - b.begin) % kBatch, e = static_cast<size_t>(orig[i]);
+                for (size_t t = 0; t < nt; ++t)
+                    for (size_t c = 0; c < 6; ++c) vs.Ycur[((m * nt + t) * 6 + c) * kBatch + lane] = Y[(6 * (k0 + t) + c) * n + e];
+            }
+        }
+        vs.Yprev = vs.Ycur;
+        k0 += nt;
+    }
+    im.clock = clock;
+}
+
 size_t TLEDForceField::bufferRows() const { return m_impl->compact ? m_impl->rows.rows() : m_impl->buffers.rows(); }
 bool TLEDForceField::compactBuffers() const { return m_impl->compact; }
 bool TLEDForceField::usesFastPath() const {

@@ -1,4 +1,5 @@
 #include "fascia/viscoelastic/ViscoelasticProny.h"
+#include "fascia/viscoelastic/ElementHistory.h"
 
 #include "fascia/base/Error.h"
 
@@ -6,6 +7,8 @@
 #include <sstream>
 
 namespace fascia::viscoelastic {
+
+ElementHistory::~ElementHistory() = default;  // (its key function: one type_info for every plugin)
 
 namespace {
 std::string fmt(double v) {

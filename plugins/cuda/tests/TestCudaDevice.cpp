@@ -188,6 +188,13 @@ TEST_CASE("CudaStep on the GPU gives the constraints' reactions as the CPU does"
     residency::reactionsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
 }
 
+TEST_CASE("CudaStep on the GPU brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
+    requireDevice();
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    residency::relaxedStressesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+}
+
 TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");

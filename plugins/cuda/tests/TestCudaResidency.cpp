@@ -30,3 +30,9 @@ TEST_CASE("CudaStep emulated gives the constraints' reactions as the CPU does", 
     CAPTURE(precision);
     residency::reactionsFollow("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
 }
+
+TEST_CASE("CudaStep emulated brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    CAPTURE(precision);
+    residency::relaxedStressesFollow("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+}

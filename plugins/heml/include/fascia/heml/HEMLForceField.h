@@ -56,6 +56,7 @@
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
 #include "fascia/sim/ThreadedStep.h"
+#include "fascia/viscoelastic/ElementHistory.h"
 
 #include <memory>
 #include <string>
@@ -69,7 +70,7 @@ namespace fascia::heml {
 
 struct HEMLData;
 
-class HEMLForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces {
+class HEMLForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces, public viscoelastic::ElementHistory {
 public:
     HEMLForceField();
     ~HEMLForceField() override;
@@ -108,6 +109,10 @@ public:
     /// and the history clock (viscoelastic/HistoryClock.h); nothing without a ViscoelasticProny.
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
+    /// The viscous history gamma as a step backend advanced it (viscoelastic/ElementHistory.h: per
+    /// term and link coefficient, input order), into its slots, committed and current, and the
+    /// backend's clock (Yh: none, HEML has no hexahedra).
+    void adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) override;
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
 
     /// f += forces at positions x; x and f hold 3 doubles per node in the state's order (a

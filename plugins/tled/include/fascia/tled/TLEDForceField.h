@@ -68,6 +68,7 @@
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"
 #include "fascia/sim/ThreadedStep.h"
+#include "fascia/viscoelastic/ElementHistory.h"
 
 #include <array>
 #include <memory>
@@ -80,7 +81,7 @@ class ViscoelasticProny;
 
 namespace fascia::tled {
 
-class TLEDForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces {
+class TLEDForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces, public viscoelastic::ElementHistory {
 public:
     TLEDForceField();
     ~TLEDForceField() override;
@@ -123,6 +124,9 @@ public:
     /// the current evaluation, and the time of that evaluation (nothing without a ViscoelasticProny).
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
+    /// The Prony states as a step backend advanced them (viscoelastic/ElementHistory.h), into the
+    /// batch slots of its series, both the committed and the current ones, and the backend's clock.
+    void adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) override;
 
     /// Second Piola-Kirchhoff stress of every element (6 per element, xx yy zz xy yz xz, cell order)
     /// as addForce() at time t would compute it, viscous history included, without advancing it.
