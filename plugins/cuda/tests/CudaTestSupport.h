@@ -207,6 +207,31 @@ inline ForceProbe probeForces(const std::string& xml, double scale) {
     return p;
 }
 
+/// The internal forces of one element pass of the runner make(p.setup, precision) at the probe's
+/// state, relative to the force field's (relativeError).
+template <class MakeRunner>
+double forceError(MakeRunner&& make, const ForceProbe& p, cuda::Precision precision) {
+    auto runner = make(p.setup, precision);
+    runner->setState(p.u, p.v);
+    runner->elementPass();
+    std::vector<double> f;
+    runner->internalForces(f);
+    REQUIRE(f.size() == 3 * p.f.size());
+    return relativeError(f, p.f);
+}
+
+/// forceError in double and in float, against the bounds of every force comparison of the device
+/// step: 1e-12 relative in double, 1e-5 in float.
+template <class MakeRunner>
+void checkForces(MakeRunner&& make, const ForceProbe& p) {
+    for (const cuda::Precision precision : {cuda::Precision::Double, cuda::Precision::Float}) {
+        const bool useFloat = precision == cuda::Precision::Float;
+        const double err = forceError(make, p, precision);
+        CAPTURE(useFloat, sci(err));
+        CHECK(err <= (useFloat ? 1e-5 : 1e-12));
+    }
+}
+
 inline ForceProbe probeForces(const Law& law, double scale, Mesh mesh = Mesh::Tets) {
     return probeForces(scene(law, "", "", "<SemiImplicitEuler damping=\"5\"/>", mesh), scale);
 }

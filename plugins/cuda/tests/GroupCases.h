@@ -144,18 +144,7 @@ void forcesMatch(MakeRunner&& make) {
     CHECK(listed == (c.groups == 1 ? 0 : size_t(s.nTets + s.nHexes)));
     CHECK(s.fibresPerElement == (c.ff.find("fibreArray") != std::string::npos));
     if (s.fibresPerElement) CHECK(s.fa.size() + s.hfa.size() == 3 * size_t(s.nTets + s.nHexes));
-    for (const cuda::Precision precision : {cuda::Precision::Double, cuda::Precision::Float}) {
-        const bool useFloat = precision == cuda::Precision::Float;
-        CAPTURE(useFloat);
-        auto runner = make(s, precision);
-        runner->setState(p.u, p.v);
-        runner->elementPass();
-        std::vector<double> f;
-        runner->internalForces(f);
-        const double err = relativeError(f, p.f);
-        CAPTURE(sci(err));
-        CHECK(err <= (useFloat ? 1e-5 : 1e-12));
-    }
+    checkForces(make, p);
 }
 
 /// 1000 steps of the group cases with the CudaStep `root` against the CPU: fibre arrays on

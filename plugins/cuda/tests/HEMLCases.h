@@ -46,18 +46,7 @@ inline void forcesMatch(const MakeRunner& make) {
     REQUIRE(p.setup.springs == (name == "springs"));
     REQUIRE(p.setup.nTets == 72);
     REQUIRE(p.setup.dN.empty());
-    for (const cuda::Precision precision : {cuda::Precision::Double, cuda::Precision::Float}) {
-        const bool useFloat = precision == cuda::Precision::Float;
-        CAPTURE(useFloat);
-        auto runner = make(p.setup, precision);
-        runner->setState(p.u, p.v);
-        runner->elementPass();
-        std::vector<double> f;
-        runner->internalForces(f);
-        const double err = relativeError(f, p.f);
-        CAPTURE(sci(err));
-        CHECK(err <= (useFloat ? 1e-5 : 1e-12));
-    }
+    checkForces(make, p);
 }
 
 /// 1000 steps of every law and of the springs with the CudaStep `root` against HEMLForceField on
@@ -104,18 +93,7 @@ inline void groupForcesMatch(const MakeRunner& make) {
     body.forceField = "HEMLForceField";
     ForceProbe p = probeForces(scene(body, ""), scale);
     REQUIRE(p.setup.groups.size() == size_t(c.groups));
-    for (const cuda::Precision precision : {cuda::Precision::Double, cuda::Precision::Float}) {
-        const bool useFloat = precision == cuda::Precision::Float;
-        CAPTURE(useFloat);
-        auto runner = make(p.setup, precision);
-        runner->setState(p.u, p.v);
-        runner->elementPass();
-        std::vector<double> f;
-        runner->internalForces(f);
-        const double err = relativeError(f, p.f);
-        CAPTURE(sci(err));
-        CHECK(err <= (useFloat ? 1e-5 : 1e-12));
-    }
+    checkForces(make, p);
 }
 
 /// 1000 steps of three groups with fibre arrays, with a Prony series or none, against HEMLForceField.

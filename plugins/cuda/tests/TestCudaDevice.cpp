@@ -34,12 +34,8 @@ TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "
     const bool useFloat = GENERATE(false, true);
     CAPTURE(law.name, meshName(mesh), scale, useFloat);
     ForceProbe p = probeForces(law, scale, mesh);
-    auto runner = cuda::makeCudaRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double, 128);
-    runner->setState(p.u, p.v);
-    runner->elementPass();
-    std::vector<double> f;
-    runner->internalForces(f);
-    const double err = relativeError(f, p.f);
+    const double err = forceError([](const cuda::StepSetup& s, cuda::Precision pr) { return cuda::makeCudaRunner(s, pr, 128); }, p,
+                                  useFloat ? cuda::Precision::Float : cuda::Precision::Double);
     CAPTURE(sci(err));
     CHECK(err <= (useFloat ? 1e-5 : 1e-12));
 }

@@ -28,13 +28,7 @@ TEST_CASE("The emulated element and node kernels give TLED's forces on every nod
     REQUIRE(p.setup.nTets == (mesh == Mesh::Hexes ? 0 : mesh == Mesh::Tets ? 72 : 48));
     REQUIRE(p.setup.nHexes == (mesh == Mesh::Tets ? 0 : mesh == Mesh::Hexes ? 12 : 4));
     for (double K : p.setup.hgK) REQUIRE(K > 0);  // the hourglass forces take part
-    auto runner = cuda::makeEmulatedRunner(p.setup, useFloat ? cuda::Precision::Float : cuda::Precision::Double);
-    runner->setState(p.u, p.v);
-    runner->elementPass();
-    std::vector<double> f;
-    runner->internalForces(f);
-    REQUIRE(f.size() == 3 * p.f.size());
-    const double err = relativeError(f, p.f);
+    const double err = forceError(cuda::makeEmulatedRunner, p, useFloat ? cuda::Precision::Float : cuda::Precision::Double);
     CAPTURE(sci(err));
     CHECK(err <= (useFloat ? 1e-5 : 1e-12));
 }

@@ -9,12 +9,10 @@ namespace {
 
 std::string emulated(const std::string& precision) { return "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>"; }
 
-std::unique_ptr<cuda::StepRunner> emulatedRunner(const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeEmulatedRunner(s, p); }
-
 } // namespace
 
 TEST_CASE("The emulated edge-form kernel gives HEML's forces for every law and the springs", "[CudaStep][HEML]") {
-    heml::forcesMatch(emulatedRunner);
+    heml::forcesMatch(cuda::makeEmulatedRunner);
 }
 
 TEST_CASE("CudaStep emulated follows HEMLForceField over 1000 steps, every law and the springs", "[CudaStep][HEML]") {
@@ -51,7 +49,7 @@ TEST_CASE("CudaStep emulated relaxes HEML: the viscous trajectory leaves the ela
 }
 
 TEST_CASE("The emulated edge-form kernel gives HEML's forces with materials per group and fibre arrays", "[CudaStep][HEML][groupMaterials]") {
-    heml::groupForcesMatch(emulatedRunner);
+    heml::groupForcesMatch(cuda::makeEmulatedRunner);
 }
 
 TEST_CASE("CudaStep emulated follows HEMLForceField with materials per group and fibre arrays over 1000 steps",
