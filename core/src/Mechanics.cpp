@@ -272,17 +272,6 @@ bool adaptiveDefault() {
 std::atomic<bool> g_adaptive{adaptiveDefault()};
 } // namespace
 
-namespace {
-bool ownedDefault() {
-    const char* e = std::getenv("FASCIA_HANDOUT");
-    return !(e && std::string(e) == "shared");
-}
-std::atomic<bool> g_owned{ownedDefault()};
-} // namespace
-
-void setOwnedRanges(bool on) { g_owned.store(on); }
-bool ownedRanges() { return g_owned.load(std::memory_order_relaxed); }
-
 void setAdaptiveTeam(bool on) { g_adaptive.store(on); }
 bool adaptiveTeamEnabled() { return g_adaptive.load(std::memory_order_relaxed); }
 
@@ -299,14 +288,19 @@ void TeamChoice::record(int t, double s) {
     seconds[t][count[t] % kKeep] = s;
     ++count[t];
     if (t == current) {
-        // a collapsed step of the team (another process took a core back): probe at once
-        if (t == 1 && probing == 0 && count[0] > 0 && s > 2 * mean(0)) nextProbe = std::min(nextProbe, step + 1);
+        if (probing > 0 || count[1 - t] == 0) return;
+        // a collapsed step of the team (another process took a core back), or a team slower than the
+        // other's typical step for kKeep steps (a lasting slowdown): probe at once
+        const double other = median(1 - t);
+        if (s > 2 * other || (count[t] >= kKeep && step - lastProbe >= kKeep && mean(t) > 1.25 * other))
+            nextProbe = std::min(nextProbe, step + 1);
         return;
     }
     if (probing == 0) return;
     // a probe step twice as slow as the current team's steps: no need for the rest of the probe
     if (count[t] == 1 && s > 2 * mean(current)) probing = 1;
     if (--probing > 0) return;
+    lastProbe = step;
     // the end of a probe: switch when the other team's recent steps are 10 % faster on average
     if (mean(t) < 0.9 * mean(current)) {
         current = t;
@@ -316,6 +310,15 @@ void TeamChoice::record(int t, double s) {
         interval = std::min((mean(t) > 3 * mean(current) ? 4 : 2) * interval, 1024L);
     }
     nextProbe = step + interval;
+}
+
+double TeamChoice::median(int t) const {
+    const int n = std::min(count[t], kKeep);
+    if (n == 0) return INFINITY;
+    double v[kKeep];
+    std::copy(seconds[t], seconds[t] + n, v);
+    std::sort(v, v + n);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 double TeamChoice::mean(int t) const {

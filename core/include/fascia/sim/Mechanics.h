@@ -252,16 +252,21 @@ protected:
 
 /// The team of the threaded step (ThreadedStep.h), chosen from the measured steps: all the OpenMP
 /// threads, or one thread when the steps measured on one are faster (another process holds a core:
-/// every barrier of a team then waits for a descheduled thread, docs/performance.md, issue 17). The
+/// a thread preempted while it holds a task of the step team stalls the step, StepTeam.h,
+/// docs/performance.md, issue 17). The
 /// results are bitwise the same either way (principle 5), so switching costs nothing but the probes:
 /// every `interval` steps it runs kProbe steps on the other team, and switches when the mean of
 /// those steps is 10 % below the mean of the current team's recent steps; the interval doubles (up to 1,024 steps) while the choice stands.
-/// Three things keep a loaded run from paying for many slow steps before it switches: the first
+/// Four things keep a loaded run from paying for many slow steps before it switches: the first
 /// probe comes after kFirstProbe steps; a probe whose first step takes twice the current team's
-/// mean ends there (the other team is clearly slower); and a step of the current team (all
-/// threads) that takes more than twice the mean of the last one-thread steps brings the next probe
-/// forward to the next step (the load came back). After a probe 3 times slower than the current
-/// team the interval grows 4 times instead of 2 (each such probe step costs milliseconds).
+/// mean ends there (the other team is clearly slower); a step of the current team that takes more
+/// than twice the median of the other team's last steps brings the next probe forward to the next
+/// step (the load came back); and so does a current team whose last kKeep steps take on average
+/// more than 1.25 times that median (a lasting slowdown, such as a scheduler that put the threads
+/// on the loaded core), at most once every kKeep steps. Medians, not means, of the other team:
+/// one stalled step in a probe of three (a worker preempted while it held a task) no longer hides
+/// that team for the rest of the run (issue 17, session 15). After a probe 3 times slower than the
+/// current team the interval grows 4 times instead of 2 (each such probe step costs milliseconds).
 struct TeamChoice {
     static constexpr int kKeep = 8, kProbe = 3, kFirstProbe = 4;
     double seconds[2][kKeep] = {};  ///< recent step times (s) per team: [0] one thread, [1] all
@@ -269,11 +274,13 @@ struct TeamChoice {
     int current = 1;                ///< the team of ordinary steps
     long step = 0, nextProbe = kFirstProbe, interval = 16;
     int probing = 0;                ///< probe steps left
+    long lastProbe = 0;             ///< the step the last probe ended
     /// The team of the next step: 0 one thread, 1 all.
     int choose();
     /// The time of a step just run on team `team` (as choose() gave it).
     void record(int team, double s);
     double mean(int team) const;
+    double median(int team) const;
 };
 /// Whether the threaded step picks its team from measured steps (TeamChoice; default true,
 /// FASCIA_ADAPTIVE_TEAM=0 in the environment turns it off): off, it always runs on all threads.

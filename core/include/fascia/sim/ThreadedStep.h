@@ -1,28 +1,34 @@
 #pragma once
-/// One parallel region per step (docs/design.md, section 1, "the threaded step"; docs/performance.md,
-/// issue 17). A force field that implements ThreadedForces splits its addForce into stages (a node pass,
-/// element blocks, the ordered sum of its block buffers); an integrator whose update is node by node
-/// runs its step through stepThreaded, which runs, in one parallel region:
+/// One job of the step team per step (docs/design.md, section 1, "the threaded step";
+/// docs/performance.md, issue 17). A force field that implements ThreadedForces splits its addForce
+/// into stages (a node pass, element blocks, the ordered sum of its block buffers); an integrator
+/// whose update is node by node runs its step through stepThreaded, which runs, as the phases of one
+/// job of the step team (fascia/sim/StepTeam.h):
 ///
-///   1. the initial forces (external + m g) and every threaded force field's node pass, by chunks;
-///   2. the other force fields (serially, by whichever thread takes that task first) and every
-///      threaded force field's blocks, all from one shared counter;
-///   3. per chunk of state nodes: the block buffers summed in block order, force field by force field,
-///      then the integrator's update of the chunk and the finite check's sums (the constrained chunks
-///      wait for the constraints: 3b below).
+///   0. the initial forces (external + m g) and every threaded force field's node pass, by chunks;
+///   1. the other force fields (serially, by whichever thread takes that task first) and every
+///      threaded force field's blocks;
+///   2. per chunk of state nodes: the block buffers summed in block order, force field by force field,
+///      then the integrator's update of the chunk and the finite check's sums; then, with
+///      constraints, the constraints alone (TeamJob::between), and
+///   3. the update of the chunks that hold a constrained node.
 ///
-/// Every phase hands its tasks out from a shared atomic counter (dynamic: a thread that is descheduled
-/// leaves its share to the others) and each task's result depends on the task only, never on the
-/// thread that ran it, so the step is bitwise the same for any thread count and any schedule
-/// (docs/design.md, principle 5). A barrier separates the phases, because each reads what the
-/// previous one wrote anywhere (u for the blocks, every block's buffer for the sums).
+/// Every phase hands its tasks out dynamically (each thread its own range first, then the others':
+/// a thread that is descheduled leaves its share to the others, and the caller waits only for the
+/// tasks that were taken, never for a thread), and each task's result depends on the task only,
+/// never on the thread that ran it, so the step is bitwise the same for any thread count and any
+/// schedule (docs/design.md, principle 5). A phase opens when the previous one is done, because each
+/// reads what the previous one wrote anywhere (u for the blocks, every block's buffer for the sums).
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/StepTeam.h"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace fascia::core {
@@ -48,8 +54,8 @@ public:
     virtual void sumForceRange(double* f, long lo, long hi) = 0;
 };
 
-/// A test hook called before each element block of the threaded stages with the OpenMP thread number
-/// and the block's index in the step (a test delays one thread with it); null (the default): none.
+/// A test hook called before each element block of the threaded stages with the step team's thread
+/// number and the block's index in the step (a test delays one thread with it); null (the default): none.
 using TaskHook = void (*)(int thread, long task);
 void setTaskHook(TaskHook hook);
 TaskHook taskHook();
@@ -59,14 +65,10 @@ TaskHook taskHook();
 /// its update), which gives the same bits. For tests and benchmarks of the two paths.
 void setThreadedStep(bool on);
 bool threadedStepEnabled();
-/// Whether the threads own ranges of each phase's tasks (TaskCounter; default true): false with
-/// FASCIA_HANDOUT=shared in the environment or setOwnedRanges(false). The same bits either way.
-void setOwnedRanges(bool on);
-bool ownedRanges();
 
 namespace detail {
-/// Runs fn on the calling thread in a team of its own (an orphaned "omp for" inside it binds to that
-/// team, not to the enclosing region), keeping the first exception for the caller to rethrow.
+/// Runs fn on the calling thread in an OpenMP team of its own (an orphaned "omp for" inside it binds
+/// to that team), keeping the first exception for the caller to rethrow.
 template <class Fn>
 inline void runAlone(std::exception_ptr& error, Fn&& fn) {
 #pragma omp parallel num_threads(1)
@@ -79,33 +81,6 @@ inline void runAlone(std::exception_ptr& error, Fn&& fn) {
     }
 }
 
-/// Tasks 0 .. total - 1 of one phase, handed out dynamically. Each of the T threads of the team owns the
-/// range [t total / T, (t + 1) total / T) and takes its tasks in order from a counter of its own; when its
-/// range is done it takes from the other ranges (work stealing). On a quiet machine each thread so runs
-/// the same blocks and node chunks step after step (their data stay in its core's caches), and a thread
-/// that is descheduled leaves its range to the others. With ownedRanges() false (FASCIA_HANDOUT=shared in
-/// the environment) every thread takes from one shared counter instead (an experiment of issue 17).
-struct TaskCounter {
-    static constexpr int kMaxRanges = 64;
-    struct alignas(64) Slot {
-        std::atomic<long> next{0};
-    };
-    Slot slots[kMaxRanges];
-    long take(long total) {
-        const int T = std::min(omp_get_num_threads(), kMaxRanges);
-        if (T == 1 || !ownedRanges()) return slots[0].next.fetch_add(1, std::memory_order_relaxed);
-        const int t = omp_get_thread_num() % T;
-        for (int k = 0; k < T; ++k) {
-            const int r = (t + k) % T;
-            const long begin = total * r / T, end = total * (r + 1) / T;
-            if (slots[r].next.load(std::memory_order_relaxed) >= end - begin) continue;
-            const long i = begin + slots[r].next.fetch_add(1, std::memory_order_relaxed);
-            if (i < end) return i;
-        }
-        return total;
-    }
-};
-
 /// Maps a flat task index to (force field k, its local task) through the prefix sums `start`.
 inline size_t ownerOf(const std::vector<long>& start, long task) {
     size_t k = 0;
@@ -113,74 +88,139 @@ inline size_t ownerOf(const std::vector<long>& start, long task) {
     return k;
 }
 
-inline void callHook(long task) {
-    if (TaskHook h = taskHook()) h(omp_get_thread_num(), task);
-}
+/// The phases 0 and 1 of the threaded stages (see the top of this file) for the force fields ffs:
+/// phase 0 the chunks of `nInit` state nodes of the initial forces (init(lo, hi); none when nInit is
+/// 0), then every force field's node pass by chunks; phase 1 `alone()` as its first task when
+/// haveAlone (the force fields that are not threaded), then every force field's blocks.
+struct ForceStages {
+    std::vector<ThreadedForces*> ffs;
+    long initChunks = 0, nInit = 0;
+    bool haveAlone = false;
+    std::vector<long> prep, blocks;  ///< prefix sums of the tasks of phases 0 and 1
 
-/// The phases 1 and 2 of the threaded stages (see the top of this file) for the force fields ffs:
-/// their node passes, then their blocks; `init(lo, hi)` adds state-node chunks to phase 1 (the group's
-/// initial forces; none when nInit is 0) and `alone()` runs as the first task of phase 2 (the force
-/// fields that are not threaded). Ends with a barrier. Call inside a parallel region, on every thread.
-template <class Init, class Alone>
-void runPrepareAndBlocks(const std::vector<ThreadedForces*>& ffs, long nInit,
-                         Init&& init, bool haveAlone, Alone&& alone, TaskCounter& c1, TaskCounter& c2,
-                         std::exception_ptr& error) {
-    const long initChunks = (nInit + kNodeChunk - 1) / kNodeChunk;
-    std::vector<long> prep{initChunks}, blocks{haveAlone ? 1L : 0L};
-    for (ThreadedForces* ff : ffs) {
-        prep.push_back(prep.back() + (ff->prepareNodes() + kNodeChunk - 1) / kNodeChunk);
-        blocks.push_back(blocks.back() + ff->forceBlocks());
+    ForceStages(std::vector<ThreadedForces*> f, long nInitNodes, bool alone)
+        : ffs(std::move(f)), initChunks((nInitNodes + kNodeChunk - 1) / kNodeChunk), nInit(nInitNodes), haveAlone(alone) {
+        prep.push_back(initChunks);
+        blocks.push_back(haveAlone ? 1L : 0L);
+        for (ThreadedForces* ff : ffs) {
+            prep.push_back(prep.back() + (ff->prepareNodes() + kNodeChunk - 1) / kNodeChunk);
+            blocks.push_back(blocks.back() + ff->forceBlocks());
+        }
     }
-    for (long k = c1.take(prep.back()); k < prep.back(); k = c1.take(prep.back())) {
+    /// Task k of phase 0.
+    template <class Init>
+    void prepare(long k, Init&& init) const {
         if (k < initChunks) {
             init(k * kNodeChunk, std::min(nInit, (k + 1) * kNodeChunk));
-            continue;
+            return;
         }
         const size_t f = ownerOf(prep, k);  // prep[f] .. prep[f + 1] are the chunks of ffs[f]
         const long c = k - prep[f], n = ffs[f]->prepareNodes();
         ffs[f]->prepareRange(c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
     }
-    if (prep.back() > 0) {  // (the same on every thread)
-#pragma omp barrier
-    }
-    for (long k = c2.take(blocks.back()); k < blocks.back(); k = c2.take(blocks.back())) {
+    /// Task k of phase 1 on thread `thread`.
+    template <class Alone>
+    void block(long k, int thread, std::exception_ptr& error, Alone&& alone) const {
         if (haveAlone && k == 0) {
             runAlone(error, alone);
-            continue;
+            return;
         }
         const size_t f = ownerOf(blocks, k);
-        callHook(k);
+        if (TaskHook h = taskHook()) h(thread, k);
         ffs[f]->runForceBlock(k - blocks[f]);
     }
-#pragma omp barrier
-}
+};
+
+/// addForce's stages as a team job: the node passes, the blocks, the sum into f over nNodes nodes.
+class ForcesJob final : public TeamJob {
+public:
+    ForcesJob(ThreadedForces& ff, double* f, long nNodes) : m_stages({&ff}, 0, false), m_f(f), m_n(nNodes) {}
+    int phases() const override { return 3; }
+    long tasks(int p) const override {
+        return p == 0 ? m_stages.prep.back() : p == 1 ? m_stages.blocks.back() : (m_n + kNodeChunk - 1) / kNodeChunk;
+    }
+    void run(int p, long k, int thread) override {
+        if (p == 0) m_stages.prepare(k, [](long, long) {});
+        else if (p == 1) m_stages.block(k, thread, m_error, [] {});
+        else m_stages.ffs[0]->sumForceRange(m_f, k * kNodeChunk, std::min(m_n, (k + 1) * kNodeChunk));
+    }
+
+private:
+    ForceStages m_stages;
+    double* m_f;
+    long m_n;
+    std::exception_ptr m_error;
+};
 } // namespace detail
 
-/// addForce of a ThreadedForces force field, after its beginForces: its stages in one parallel region
-/// (phases 1, 2 and the sum into f over the state's nNodes nodes). Bitwise the same for any thread count.
+/// addForce of a ThreadedForces force field, after its beginForces: its stages as one job of the step
+/// team (StepTeam.h) on the OpenMP threads (omp_get_max_threads()). Bitwise the same for any thread count.
 inline void runThreadedForces(ThreadedForces& ff, double* f, long nNodes) {
-    const std::vector<ThreadedForces*> ffs{&ff};
-    detail::TaskCounter c1, c2, c3;
-    std::exception_ptr error;
-    const bool parallel = ff.forceBlocks() > 1;
-#pragma omp parallel if (parallel)
-    {
-        detail::runPrepareAndBlocks(
-            ffs, 0, [](long, long) {}, false, [] {}, c1, c2, error);
-        const long chunks = (nNodes + kNodeChunk - 1) / kNodeChunk;
-        for (long c = c3.take(chunks); c < chunks; c = c3.take(chunks)) ff.sumForceRange(f, c * kNodeChunk, std::min(nNodes, (c + 1) * kNodeChunk));
-    }
+    detail::ForcesJob job(ff, f, nNodes);
+    runTeamJob(job, ff.forceBlocks() > 1 ? omp_get_max_threads() : 1);
 }
 
-/// The group's step in one parallel region: the forces of every force field at time t (the threaded
-/// ones through their stages, the others serially inside the region), the constraints' projection and
-/// the reactions as computeForces does them, and update(lo, hi) on every chunk of state nodes, which
-/// must update x and v of nodes [lo, hi) from their own x, v, f and 1/m alone. Also computes the sums
-/// of checkStep for every chunk the constraints do not touch (g.chunkReady). Returns false, having done
-/// nothing, when no force field of the group is threaded or the threaded step is off: the caller then
-/// takes its sequential path (computeForces, then the update), which gives the same bits as this one
-/// when the threaded force fields come after the others in the group (else the sums of f run in another
-/// order: deterministic still, but not the sequential path's bits).
+namespace detail {
+/// The group's step as a team job (stepThreaded): phases 0 and 1 of ForceStages, 2 the sums and the
+/// update of the chunks no constraint touches, then (with constraints) the constraints alone and
+/// phase 3, the update of the other chunks.
+template <class Update>
+class StepJob final : public TeamJob {
+public:
+    StepJob(MechanicalGroup& g, double t, std::vector<ThreadedForces*> ffs, std::vector<BaseForceField*> others, Update& update)
+        : m_g(g), m_t(t), m_stages(std::move(ffs), static_cast<long>(g.state->size()), !others.empty()), m_others(std::move(others)),
+          m_update(update), m_n(static_cast<long>(g.state->size())), m_init(g.forceStart(t)), m_f(flat(g.state->f())) {}
+    int phases() const override { return m_g.constraints.empty() ? 3 : 4; }
+    long tasks(int p) const override {
+        return p == 0 ? m_stages.prep.back() : p == 1 ? m_stages.blocks.back() : (m_n + kNodeChunk - 1) / kNodeChunk;
+    }
+    void run(int p, long k, int thread) override {
+        if (p == 0) {
+            m_stages.prepare(k, [&](long lo, long hi) { m_g.initialForces(m_init, lo, hi); });
+        } else if (p == 1) {
+            m_stages.block(k, thread, m_error, [&] {
+                for (BaseForceField* ff : m_others) {
+                    ScopedTimer timer(ff->timer());
+                    ff->addForce(*m_g.state, m_g.state->f(), m_t);
+                }
+            });
+        } else if (p == 2) {
+            const long lo = k * kNodeChunk, hi = std::min(m_n, (k + 1) * kNodeChunk);
+            for (ThreadedForces* ff : m_stages.ffs) ff->sumForceRange(m_f, lo, hi);
+            if (!m_g.chunkReady[size_t(k)] || m_error) return;
+            m_update(lo, hi);
+            m_g.checkChunk(k, lo, hi);
+        } else if (!m_g.chunkReady[size_t(k)] && !m_error) {
+            m_update(k * kNodeChunk, std::min(m_n, (k + 1) * kNodeChunk));
+        }
+    }
+    void between(int p) override {
+        if (p == 2 && !m_g.constraints.empty() && !m_error) runAlone(m_error, [&] { m_g.applyConstraints(); });
+    }
+    std::exception_ptr& error() { return m_error; }
+
+private:
+    MechanicalGroup& m_g;
+    double m_t;
+    ForceStages m_stages;
+    std::vector<BaseForceField*> m_others;
+    Update& m_update;
+    long m_n;
+    MechanicalGroup::ForceStart m_init;
+    double* m_f;
+    std::exception_ptr m_error;
+};
+} // namespace detail
+
+/// The group's step as one job of the step team: the forces of every force field at time t (the
+/// threaded ones through their stages, the others serially as one task), the constraints' projection
+/// and the reactions as computeForces does them, and update(lo, hi) on every chunk of state nodes,
+/// which must update x and v of nodes [lo, hi) from their own x, v, f and 1/m alone. Also computes the
+/// sums of checkStep for every chunk the constraints do not touch (g.chunkReady). Returns false,
+/// having done nothing, when no force field of the group is threaded or the threaded step is off: the
+/// caller then takes its sequential path (computeForces, then the update), which gives the same bits
+/// as this one when the threaded force fields come after the others in the group (else the sums of f
+/// run in another order: deterministic still, but not the sequential path's bits).
 template <class Update>
 bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     if (!threadedStepEnabled()) return false;
@@ -196,7 +236,7 @@ bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     for (ThreadedForces* ff : ffs) ff->beginForces(s, t);
     const long chunks = (n + kNodeChunk - 1) / kNodeChunk;
     g.prepareReactions();
-    // chunks holding a constrained node are updated after the constraints (phase 3b); a constraint
+    // chunks holding a constrained node are updated after the constraints (phase 3); a constraint
     // that lists no nodes (a rigid tool: the nodes it touches depend on the state) may touch any
     // chunk, so then every chunk waits for the constraints
     bool anyNode = false;
@@ -205,46 +245,17 @@ bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     for (int i : g.reactionNodes)
         if (i >= 0 && i < n) g.chunkReady[size_t(i / kNodeChunk)] = 0;
     g.chunkSums.assign(2 * size_t(chunks), 0.0);
-    const MechanicalGroup::ForceStart init = g.forceStart(t);
-    double* fp = flat(s.f());
     long blocks = 0;
     for (ThreadedForces* ff : ffs) blocks += ff->forceBlocks();
-    detail::TaskCounter c1, c2, c3, c4;
-    std::exception_ptr error;
+    detail::StepJob<std::remove_reference_t<Update>> job(g, t, std::move(ffs), std::move(others), update);
     // the team: all threads, or one when the measured steps say so (a loaded core: TeamChoice)
     const bool parallel = blocks > 1 || n > kParallelNodes;
     const bool adapt = parallel && adaptiveTeamEnabled() && omp_get_max_threads() > 1;
     const int team = adapt ? g.team.choose() : 1;
     const double start = adapt ? omp_get_wtime() : 0.0;
-#pragma omp parallel if (parallel && team == 1)
-    {
-        detail::runPrepareAndBlocks(
-            ffs, n, [&](long lo, long hi) { g.initialForces(init, lo, hi); }, !others.empty(),
-            [&] {
-                for (BaseForceField* ff : others) {
-                    ScopedTimer timer(ff->timer());
-                    ff->addForce(s, s.f(), t);
-                }
-            },
-            c1, c2, error);
-        for (long c = c3.take(chunks); c < chunks; c = c3.take(chunks)) {
-            const long lo = c * kNodeChunk, hi = std::min(n, (c + 1) * kNodeChunk);
-            for (ThreadedForces* ff : ffs) ff->sumForceRange(fp, lo, hi);
-            if (!g.chunkReady[size_t(c)] || error) continue;
-            update(lo, hi);
-            g.checkChunk(c, lo, hi);
-        }
-        if (!g.constraints.empty()) {
-#pragma omp barrier
-#pragma omp single
-            if (!error) detail::runAlone(error, [&] { g.applyConstraints(); });
-            // (the implicit barrier of single)
-            for (long c = c4.take(chunks); c < chunks; c = c4.take(chunks))
-                if (!g.chunkReady[size_t(c)] && !error) update(c * kNodeChunk, std::min(n, (c + 1) * kNodeChunk));
-        }
-    }
+    runTeamJob(job, parallel && team == 1 ? omp_get_max_threads() : 1);
     if (adapt) g.team.record(team, omp_get_wtime() - start);
-    if (error) std::rethrow_exception(error);
+    if (job.error()) std::rethrow_exception(job.error());
     return true;
 }
 

@@ -1,0 +1,48 @@
+#pragma once
+/// The threads of the threaded step (ThreadedStep.h; issue 17, "a loaded core").
+///
+/// An OpenMP parallel region ends when every thread of its team has arrived, and its barriers wait
+/// for every thread too: when another process holds the core of one of them (a render or haptic
+/// thread beside the simulation), the step waits until the scheduler gives that thread its core
+/// back, several milliseconds for a step of a tenth of one. The step team never waits for a thread
+/// to arrive or to leave. The caller posts a job of phases, each a list of tasks; the caller and
+/// whichever workers are running take the tasks of the open phase from shared counters (each thread
+/// owns a range of them and takes from the others' when its own is done); the caller waits at the
+/// end of a phase only for the tasks that were taken and not yet done, runs what must run alone
+/// (TeamJob::between), and opens the next phase. A worker that comes late takes what is left; one
+/// that does not come at all leaves its share to the others. A worker only touches the job through
+/// a task it took, and the caller does not return before that task is done, so no worker outlives
+/// the job it helped. Results stay bitwise the same for any thread count and schedule as long as
+/// each task's result depends on the task only (docs/design.md, principle 5).
+///
+/// The workers (threads - 1 of them, started on first use and kept) spin for a while after their
+/// last task (the next step comes soon) and then sleep until a job comes: a simulation that runs on
+/// one thread (TeamChoice) leaves them asleep, off the other cores.
+
+namespace fascia::core {
+
+/// A job of the step team: phases 0 .. phases() - 1, run one after the other, each of tasks(p)
+/// independent tasks.
+class TeamJob {
+public:
+    virtual ~TeamJob() = default;
+    virtual int phases() const = 0;
+    /// The tasks of phase p, asked for when the phase opens (after between(p - 1)).
+    virtual long tasks(int phase) const = 0;
+    /// Task k of phase p, on thread `thread` (0: the caller). Any thread; must not throw.
+    virtual void run(int phase, long k, int thread) = 0;
+    /// On the caller alone, after every task of phase p and before the next phase opens.
+    virtual void between(int phase) { (void)phase; }
+};
+
+/// Runs job on the calling thread and on up to threads - 1 workers, as above; returns when every
+/// task of every phase is done. threads <= 1: on the caller alone, in order.
+void runTeamJob(TeamJob& job, int threads);
+
+/// Whether the threads own ranges of each phase's tasks (default true): false with
+/// FASCIA_HANDOUT=shared in the environment or setOwnedRanges(false), and every thread takes from one
+/// shared counter instead. The same bits either way.
+void setOwnedRanges(bool on);
+bool ownedRanges();
+
+} // namespace fascia::core

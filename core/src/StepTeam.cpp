@@ -1,0 +1,189 @@
+#include "fascia/sim/StepTeam.h"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace fascia::core {
+
+namespace {
+
+bool ownedDefault() {
+    const char* e = std::getenv("FASCIA_HANDOUT");
+    return !(e && std::string(e) == "shared");
+}
+std::atomic<bool> g_owned{ownedDefault()};
+
+inline void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+}
+
+constexpr int kMaxThreads = 64;
+/// How long an idle worker spins for the next phase before it sleeps (a step of a small mesh
+/// comes every few tenths of a millisecond).
+constexpr auto kSpin = std::chrono::microseconds(2000);
+
+/// The team's state. The open phase is published as a seqlock (epoch odd while the caller writes
+/// it, even when it holds); each range counter holds the phase's tag (epoch / 2) in its high 32
+/// bits and the next task of its range in the low 32, so a take from a phase that has since been
+/// replaced fails on the tag.
+class Team {
+public:
+    void run(TeamJob& job, int threads) {
+        threads = std::min(threads, kMaxThreads);
+        startWorkers(threads - 1);
+        for (int p = 0; p < job.phases(); ++p) {
+            const long n = job.tasks(p);
+            const int ranges = ownedRanges() ? threads : 1;
+            const std::uint64_t tag = open(&job, p, n, threads, ranges);
+            work(job, p, n, ranges, 0, tag);
+            while (m_done.load(std::memory_order_acquire) < n) relax();
+            job.between(p);
+        }
+        // (the last phase stays published, exhausted: a worker that reads it takes nothing)
+    }
+
+private:
+    struct alignas(64) Counter {
+        std::atomic<std::uint64_t> word{0};
+    };
+
+    /// Publishes phase p of job: n tasks in `ranges` ranges for `threads` threads. Returns the phase's tag.
+    std::uint64_t open(TeamJob* job, int p, long n, int threads, int ranges) {
+        const std::uint64_t e = m_epoch.load(std::memory_order_relaxed);
+        m_epoch.store(e + 1, std::memory_order_relaxed);
+        std::atomic_thread_fence(std::memory_order_release);
+        m_job.store(job, std::memory_order_relaxed);
+        m_phase.store(p, std::memory_order_relaxed);
+        m_total.store(n, std::memory_order_relaxed);
+        m_threads.store(threads, std::memory_order_relaxed);
+        m_ranges.store(ranges, std::memory_order_relaxed);
+        m_done.store(0, std::memory_order_relaxed);
+        const std::uint64_t tag = (e + 2) >> 1;
+        for (int r = 0; r < ranges; ++r) m_counters[r].word.store(tag << 32, std::memory_order_relaxed);
+        m_epoch.store(e + 2, std::memory_order_seq_cst);  // (seq_cst: against m_sleeping, see sleep)
+        if (m_sleeping.load(std::memory_order_seq_cst) > 0) {
+            std::lock_guard<std::mutex> lock(m_mutex);
+            m_wake.notify_all();
+        }
+        return tag;
+    }
+
+    /// Takes a task of the phase tagged `tag` (n tasks in T ranges, as published with it) for thread
+    /// t: its own range first, then the others' in turn; -1 when none is left (or the phase was
+    /// replaced).
+    long take(std::uint64_t tag, long n, int T, int t) {
+        for (int i = 0; i < T; ++i) {
+            const int r = (t + i) % T;
+            const long begin = n * r / T, size = n * (r + 1) / T - begin;
+            std::uint64_t w = m_counters[r].word.load(std::memory_order_relaxed);
+            for (;;) {
+                if ((w >> 32) != tag) return -1;
+                const long k = static_cast<long>(w & 0xffffffffu);
+                if (k >= size) break;
+                if (m_counters[r].word.compare_exchange_weak(w, w + 1, std::memory_order_acq_rel, std::memory_order_relaxed))
+                    return begin + k;
+            }
+        }
+        return -1;
+    }
+
+    /// Thread t runs tasks of the phase until none is left.
+    void work(TeamJob& job, int p, long n, int ranges, int t, std::uint64_t tag) {
+        for (long k = take(tag, n, ranges, t); k >= 0; k = take(tag, n, ranges, t)) {
+            job.run(p, k, t);
+            m_done.fetch_add(1, std::memory_order_release);
+        }
+    }
+
+    void startWorkers(int count) {
+        // (only the caller of runTeamJob starts workers: the threaded step runs on one thread at a time)
+        while (static_cast<int>(m_workers.size()) < count) {
+            const int t = static_cast<int>(m_workers.size()) + 1;
+            m_workers.emplace_back([this, t] { workerLoop(t); });
+            m_workers.back().detach();
+        }
+    }
+
+    void workerLoop(int t) {
+        std::uint64_t seen = 0;
+        auto idleSince = std::chrono::steady_clock::now();
+        for (unsigned spins = 0;; ++spins) {
+            const std::uint64_t e = m_epoch.load(std::memory_order_acquire);
+            if ((e & 1) == 0 && e != seen) {
+                TeamJob* job = m_job.load(std::memory_order_relaxed);
+                const int p = m_phase.load(std::memory_order_relaxed), threads = m_threads.load(std::memory_order_relaxed),
+                          ranges = m_ranges.load(std::memory_order_relaxed);
+                const long n = m_total.load(std::memory_order_relaxed);
+                std::atomic_thread_fence(std::memory_order_acquire);
+                if (m_epoch.load(std::memory_order_relaxed) != e) continue;  // (being replaced: read again)
+                if (job && t < threads) work(*job, p, n, ranges, t, e >> 1);
+                seen = e;
+                idleSince = std::chrono::steady_clock::now();
+                continue;
+            }
+            relax();
+            if ((spins & 255) != 0 || std::chrono::steady_clock::now() - idleSince < kSpin) continue;
+            sleepWhile(e);
+            idleSince = std::chrono::steady_clock::now();
+        }
+    }
+
+    /// Sleeps until the epoch is no longer e (open() wakes the sleepers it sees).
+    void sleepWhile(std::uint64_t e) {
+        m_sleeping.fetch_add(1, std::memory_order_seq_cst);
+        {
+            std::unique_lock<std::mutex> lock(m_mutex);
+            m_wake.wait(lock, [&] { return m_epoch.load(std::memory_order_seq_cst) != e; });
+        }
+        m_sleeping.fetch_sub(1, std::memory_order_seq_cst);
+    }
+
+    alignas(64) std::atomic<std::uint64_t> m_epoch{0};
+    std::atomic<TeamJob*> m_job{nullptr};
+    std::atomic<int> m_phase{0}, m_threads{1}, m_ranges{1};
+    std::atomic<long> m_total{0};
+    Counter m_counters[kMaxThreads];
+    alignas(64) std::atomic<long> m_done{0};
+    alignas(64) std::atomic<int> m_sleeping{0};
+    std::mutex m_mutex;
+    std::condition_variable m_wake;
+    std::vector<std::thread> m_workers;
+};
+
+Team& team() {
+    // (never destroyed: its detached workers may still be asleep in it when the program ends)
+    static Team* t = new Team;
+    return *t;
+}
+
+} // namespace
+
+void runTeamJob(TeamJob& job, int threads) {
+    if (threads <= 1) {
+        for (int p = 0; p < job.phases(); ++p) {
+            const long n = job.tasks(p);
+            for (long k = 0; k < n; ++k) job.run(p, k, 0);
+            job.between(p);
+        }
+        return;
+    }
+    team().run(job, threads);
+}
+
+void setOwnedRanges(bool on) { g_owned.store(on); }
+bool ownedRanges() { return g_owned.load(std::memory_order_relaxed); }
+
+} // namespace fascia::core
