@@ -112,13 +112,15 @@ void HEMLForceField::init() {
 
     // materials
     d.massSpring = m_stiffness.isSet();
-    m_elementMaterial.assign(m_tets.size(), nullptr);
+    // (the materials per element are kept only until the blocks hold them: 8 bytes an element at the
+    // peak, issue 17)
+    std::vector<BaseMaterial*> elementMaterial(m_tets.size(), nullptr);
     if (d.massSpring) {
         if (m_material.get() || m_groupMaterials.isSet())
             fail(m_stiffness, "'stiffness' selects the mass-spring mode, which uses no material: remove 'material'/'groupMaterials' or 'stiffness'");
     } else {
         // per mesh group, else the default material (the element layer's one rule)
-        m_elementMaterial = elements::assignMaterials(*this, m_groupMaterials,
+        elementMaterial = elements::assignMaterials(*this, m_groupMaterials,
                                                       elements::defaultMaterial(*this, m_material, m_groupMaterials), mesh,
                                                       m_tets.size(), 0)
                                 .tetrahedra;
@@ -128,7 +130,7 @@ void HEMLForceField::init() {
     m_dirA.clear();
     m_dirB.clear();
     if (!d.massSpring) {
-        const std::vector<const BaseMaterial*> cells(m_elementMaterial.begin(), m_elementMaterial.end());
+        const std::vector<const BaseMaterial*> cells(elementMaterial.begin(), elementMaterial.end());
         elements::FibreField a = elements::resolveFibres(*this, 0, m_fibreArray, mesh, cells, m_tets.size());
         elements::FibreField b = elements::resolveFibres(*this, 1, m_fibreArray2, mesh, cells, m_tets.size());
         if (a.used) m_dirA = std::move(a.dir);
@@ -145,7 +147,7 @@ void HEMLForceField::init() {
     // each part that relaxes must be stress-free at rest, or a body at rest creeps (RelaxationSplit.h)
     if (m_visco && !d.massSpring) {
         std::vector<const BaseMaterial*> seen;
-        for (const BaseMaterial* m : m_elementMaterial) {
+        for (const BaseMaterial* m : elementMaterial) {
             if (std::find(seen.begin(), seen.end(), m) != seen.end()) continue;
             seen.push_back(m);
             const std::string err = materials::relaxationRestError(materials::relaxationSplit(*m, d.J0),
@@ -156,7 +158,7 @@ void HEMLForceField::init() {
     }
 
     m_rest = rest;
-    precompute(rest);
+    precompute(rest, elementMaterial);
 }
 
 namespace {
@@ -203,7 +205,7 @@ void roundToFloat(HEMLData& d) {
 
 } // namespace
 
-void HEMLForceField::precompute(const Positions& rest) {
+void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMaterial*>& elementMaterial) {
     HEMLData& d = *m_data;
     const size_t n = rest.size(), ne = m_tets.size();
     d.nNodes = n;
@@ -221,10 +223,10 @@ void HEMLForceField::precompute(const Positions& rest) {
     if (!d.massSpring) {
         std::map<const BaseMaterial*, int> idx;
         for (size_t e = 0; e < ne; ++e) {
-            auto it = idx.find(m_elementMaterial[e]);
+            auto it = idx.find(elementMaterial[e]);
             if (it == idx.end()) {
-                it = idx.emplace(m_elementMaterial[e], int(d.materials.size())).first;
-                d.materials.push_back(m_elementMaterial[e]);
+                it = idx.emplace(elementMaterial[e], int(d.materials.size())).first;
+                d.materials.push_back(elementMaterial[e]);
             }
             matIndex[e] = it->second;
         }
@@ -267,6 +269,10 @@ void HEMLForceField::precompute(const Positions& rest) {
     }
     d.nSlots = d.elementOf.size();
     d.slotOf.assign(ne, -1);
+    // (the ordering scratch freed before the per-slot arrays come: 12 bytes an element at the peak)
+    std::vector<int>().swap(order);
+    std::vector<int>().swap(minNode);
+    std::vector<int>().swap(matIndex);
 
     // per-slot data (computed in double; precision="mixed" rounds it to float below)
     const size_t S = d.nSlots;
@@ -288,7 +294,6 @@ void HEMLForceField::precompute(const Positions& rest) {
     // edges shared between tetrahedra (mass-spring mode splits k between them)
     const elements::EdgeShares shares(d.massSpring ? m_tets : Tetrahedra{});
 
-    m_altitude.assign(ne, 0.0);
     for (size_t slot = 0; slot < S; ++slot) {
         const bool pad = d.elementOf[slot] < 0;
         const int e = pad ? -1 - d.elementOf[slot] : d.elementOf[slot];
@@ -305,7 +310,6 @@ void HEMLForceField::precompute(const Positions& rest) {
                  std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
         el.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
         el.invDetV[slot] = 1.0 / det;
-        if (!pad) m_altitude[e] = elements::tetAltitude(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]], std::abs(det) / 6.0);
         if (d.massSpring) {
             for (int k = 0; k < 6; ++k) {
                 const int a = t[edgeA(k)], b = t[edgeB(k)];
@@ -493,9 +497,13 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
     }
     // the density, else the total mass over the mesh volume (the element layer's one rule)
     const double V = d.totalVolume;
-    return elements::stableTimeStep(
-        m_tets.size(), [&](size_t e) { return m_altitude[e]; }, [&](size_t e) { return m_elementMaterial[e]; },
-        elements::densityFor(*mass, V));
+    // (the altitudes from the rest shape here, once: not kept per element, issue 17's peak memory)
+    const auto altitude = [&](size_t e) {
+        const auto& t = m_tets[e];
+        const Vec3 &p0 = m_rest[t[0]], &p1 = m_rest[t[1]], &p2 = m_rest[t[2]], &p3 = m_rest[t[3]];
+        return elements::tetAltitude(p0, p1, p2, p3, std::abs(elements::edgeRest(p0, p1, p2, p3).det) / 6.0);  // (as precompute's volume)
+    };
+    return elements::stableTimeStep(m_tets.size(), altitude, [&](size_t e) { return materialOf(e); }, elements::densityFor(*mass, V));
 }
 
 namespace {
@@ -562,7 +570,7 @@ void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vecto
         const Mat3 F = v * V.inverse();
         const double Je = F.determinant();
         J.values[e] = Je;
-        const BaseMaterial* m = m_elementMaterial[e];
+        const BaseMaterial* m = materialOf(e);
         if (!m) continue;  // mass-spring: no stress
         const Mat3 Bm = F * F.transpose();
         materials::Invariants in;
@@ -598,7 +606,12 @@ void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vecto
 size_t HEMLForceField::elementCount() const { return m_tets.size(); }
 size_t HEMLForceField::blockCount() const { return m_data ? m_data->blocks.size() : 0; }
 const materials::BaseMaterial* HEMLForceField::materialOf(size_t e) const {
-    return e < m_elementMaterial.size() ? m_elementMaterial[e] : nullptr;
+    if (!m_data || e >= m_data->slotOf.size() || m_data->massSpring) return nullptr;
+    // the block of the element's slot (blocks in slot order) holds its material
+    const HEMLData& d = *m_data;
+    const size_t slot = size_t(d.slotOf[e]);
+    const auto b = std::upper_bound(d.blocks.begin(), d.blocks.end(), slot, [](size_t s, const Block& blk) { return s < blk.begin; }) - 1;
+    return b->material >= 0 ? d.materials[size_t(b->material)] : nullptr;
 }
 bool HEMLForceField::usesFastPath() const {
     if (!m_data || m_data->massSpring) return true;

@@ -150,15 +150,13 @@ public:
         "float rounding, relatively larger at small strains; use double for verification and convergence studies"), "double"};
 
 private:
-    void precompute(const Positions& rest);
+    void precompute(const Positions& rest, const std::vector<materials::BaseMaterial*>& elementMaterial);
     void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
     Tetrahedra m_tets;                                         // input order
     Positions m_rest;                                          // rest positions (state order)
-    std::vector<materials::BaseMaterial*> m_elementMaterial;  // input order
     std::vector<Vec3> m_dirA, m_dirB;                          // unit fibre directions per element (empty: unused)
-    std::vector<double> m_altitude;                            // shortest rest altitude per element (m)
     std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
     std::unique_ptr<HEMLData> m_data;
