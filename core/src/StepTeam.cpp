@@ -10,6 +10,9 @@
 #include <thread>
 #include <vector>
 
+#include <sched.h>
+#include <time.h>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -23,6 +26,34 @@ bool ownedDefault() {
     return !(e && std::string(e) == "shared");
 }
 std::atomic<bool> g_owned{ownedDefault()};
+
+/// A worker's time on its core since it last lost it: it gives the core up (sched_yield) at a task
+/// boundary after kRun of CPU time in one stretch, before the scheduler preempts it in the middle
+/// of a task that the caller would then wait for (issue 17: a competing process on its core).
+class RunClock {
+public:
+    void beforeTask() {
+        const double wall = now(CLOCK_MONOTONIC), cpu = now(CLOCK_THREAD_CPUTIME_ID);
+        // off the core since the mark (wall time ran ahead of CPU time): a new stretch
+        if ((wall - m_wall) - (cpu - m_cpu) > 2e-4) mark(wall, cpu);
+        if (cpu - m_cpu < kRun) return;
+        sched_yield();
+        mark(now(CLOCK_MONOTONIC), now(CLOCK_THREAD_CPUTIME_ID));
+    }
+
+private:
+    static constexpr double kRun = 1e-3;
+    static double now(clockid_t c) {
+        timespec t;
+        clock_gettime(c, &t);
+        return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+    }
+    void mark(double wall, double cpu) {
+        m_wall = wall;
+        m_cpu = cpu;
+    }
+    double m_wall = 0, m_cpu = 0;
+};
 
 inline void relax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -100,9 +131,12 @@ private:
         return -1;
     }
 
-    /// Thread t runs tasks of the phase until none is left.
-    void work(TeamJob& job, int p, long n, int ranges, int t, std::uint64_t tag) {
-        for (long k = take(tag, n, ranges, t); k >= 0; k = take(tag, n, ranges, t)) {
+    /// Thread t runs tasks of the phase until none is left (a worker: clock, its RunClock).
+    void work(TeamJob& job, int p, long n, int ranges, int t, std::uint64_t tag, RunClock* clock = nullptr) {
+        for (;;) {
+            if (clock) clock->beforeTask();
+            const long k = take(tag, n, ranges, t);
+            if (k < 0) break;
             job.run(p, k, t);
             m_done.fetch_add(1, std::memory_order_release);
         }
@@ -119,6 +153,7 @@ private:
 
     void workerLoop(int t) {
         std::uint64_t seen = 0;
+        RunClock clock;
         auto idleSince = std::chrono::steady_clock::now();
         for (unsigned spins = 0;; ++spins) {
             const std::uint64_t e = m_epoch.load(std::memory_order_acquire);
@@ -129,7 +164,7 @@ private:
                 const long n = m_total.load(std::memory_order_relaxed);
                 std::atomic_thread_fence(std::memory_order_acquire);
                 if (m_epoch.load(std::memory_order_relaxed) != e) continue;  // (being replaced: read again)
-                if (job && t < threads) work(*job, p, n, ranges, t, e >> 1);
+                if (job && t < threads) work(*job, p, n, ranges, t, e >> 1, &clock);
                 seen = e;
                 idleSince = std::chrono::steady_clock::now();
                 continue;

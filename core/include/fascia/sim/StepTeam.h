@@ -15,9 +15,16 @@
 /// the job it helped. Results stay bitwise the same for any thread count and schedule as long as
 /// each task's result depends on the task only (docs/design.md, principle 5).
 ///
-/// The workers (threads - 1 of them, started on first use and kept) spin for a while after their
-/// last task (the next step comes soon) and then sleep until a job comes: a simulation that runs on
-/// one thread (TeamChoice) leaves them asleep, off the other cores.
+/// What an arrival-free team cannot avoid is a worker preempted while it holds a task: the caller
+/// must wait for that task (a block's buffer cannot be taken over half-written), until the scheduler
+/// gives the worker its core back. So a worker gives its core up itself (sched_yield) at a task
+/// boundary after 1 ms of CPU time in one stretch, before the scheduler's slice ends in the middle of
+/// a task; with no other thread waiting for the core the yield returns at once.
+///
+/// The workers (threads - 1 of them, started on first use and kept) spin for 2 ms after their last
+/// task (the next step comes soon: 300 us cost the abdomen scene 10-30 % on a quiet machine, its
+/// workers fell asleep between steps) and then sleep until a job comes: a simulation that runs on one
+/// thread (TeamChoice) leaves them asleep, off the other cores.
 
 namespace fascia::core {
 
