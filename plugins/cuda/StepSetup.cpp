@@ -187,7 +187,7 @@ void readTLED(const core::BaseForceField& ff, StepSetup& s) {
 
 /// The materials and the options of the HEML force field (HEMLForceField.cpp init), checked as
 /// readTLED does: its mass-spring mode (`stiffness`, no material), else a material per group or one
-/// for all, fibre arrays, and one Prony series (HEMLForceField takes the first of its node).
+/// for all, fibre arrays, and one Prony series (HEMLForceField takes one, and refuses a second).
 void readHEML(const core::BaseForceField& ff, StepSetup& s) {
     s.form = StepSetup::Form::Edges;
     if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
