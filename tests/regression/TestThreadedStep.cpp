@@ -1,5 +1,6 @@
-// The threaded step (fascia/sim/ThreadedStep.h: one parallel region per step, blocks and node chunks handed
-// out from shared counters) gives bitwise the positions, velocities, forces and reactions of the
+// The step team (fascia/sim/StepTeam.h) runs every task of every phase once, phases in order, with any
+// number of threads and a thread that is held up. The threaded step (fascia/sim/ThreadedStep.h: one job
+// of the step team per step, blocks and node chunks handed out dynamically) gives bitwise the positions, velocities, forces and reactions of the
 // sequential path (computeForces, then the integrator's update), for 1, 2 and 3 threads, HEML and TLED
 // tetrahedra and TLED hexahedra, elastic and with a Prony series, with every integrator, with gravity,
 // fixed nodes and a force field that is not threaded (ConstantForce) in the same group; and it still
@@ -234,4 +235,54 @@ TEST_CASE("the threaded step's team keeps all threads that are faster on average
         ++back;
     }
     CHECK(t.current == 1);
+}
+
+namespace {
+
+/// A job of 3 phases of 0, 1 and 257 tasks that records which thread ran each task, checks that no
+/// task of a phase runs before the previous phase is done, and runs something alone between phases.
+/// Thread 1 sleeps in some of its tasks.
+class CountingJob final : public fascia::core::TeamJob {
+public:
+    static constexpr long kTasks[3] = {0, 1, 257};
+    std::vector<std::atomic<int>> runs[3];
+    std::atomic<long> done[3] = {};
+    std::atomic<int> outOfOrder{0}, opened{0}, byOthers{0};
+    CountingJob() {
+        for (int p = 0; p < 3; ++p) runs[p] = std::vector<std::atomic<int>>(size_t(kTasks[p]));
+    }
+    int phases() const override { return 3; }
+    long tasks(int p) const override { return kTasks[p]; }
+    void run(int p, long k, int thread) override {
+        if (p > 0 && done[p - 1].load() != kTasks[p - 1]) ++outOfOrder;
+        if (opened.load() != p) ++outOfOrder;
+        if (thread == 1 && k % 31 == 0) std::this_thread::sleep_for(std::chrono::microseconds(300));
+        if (thread != 0) ++byOthers;
+        ++runs[p][size_t(k)];
+        ++done[p];
+    }
+    void between(int p) override {
+        if (done[p].load() != kTasks[p]) ++outOfOrder;
+        opened.store(p + 1);
+    }
+};
+
+} // namespace
+
+TEST_CASE("the step team runs every task of every phase once, phases in order, whatever the threads", "[threaded]") {
+    long helped = 0;
+    for (int threads : {1, 2, 3, 4}) {
+        for (int round = 0; round < 20; ++round) {
+            CountingJob job;
+            fascia::core::runTeamJob(job, threads);
+            CAPTURE(threads, round);
+            for (int p = 0; p < 3; ++p)
+                for (const auto& r : job.runs[p]) REQUIRE(r.load() == 1);
+            CHECK(job.outOfOrder.load() == 0);
+            CHECK(job.opened.load() == 3);
+            if (threads == 1) CHECK(job.byOthers.load() == 0);
+            else helped += job.byOthers.load();
+        }
+    }
+    CHECK(helped > 0);  // (the workers took part: with 2-4 threads some tasks ran elsewhere)
 }
