@@ -17,6 +17,7 @@ struct Case {
     std::string forcefield = "HEML", material = "CompressibleNeoHookean", mesh, element = "tetrahedra6";
     std::string precision = "double";  ///< the force field's precision parameter (double or mixed); on a device, CudaStep's (double or float)
     int block = 0;                     ///< CudaStep's blockSize (0: its default)
+    std::string forceOrder;            ///< CudaStep's forceOrder (element, node; empty: its default)
     std::string device;                ///< "cuda": the whole step on the GPU (a CudaStep in the root node); "emulate": its CPU emulation; empty: the CPU
     std::string nodeBuffers;           ///< TLED's nodeBuffers parameter (auto, range, compact; empty: its default)
     int cube = 0, steps = 200, threads = 2, repeat = 5;

@@ -67,7 +67,8 @@ std::string sceneXml(const Case& c) {
     s << "<Node name=\"root\" dt=\"1e-5\">\n";
     if (!c.device.empty())
         s << "  <CudaStep precision=\"" << c.precision << "\"" << (c.device == "emulate" ? " emulate=\"true\"" : "")
-          << (c.block > 0 ? " blockSize=\"" + std::to_string(c.block) + "\"" : "") << "/>\n";
+          << (c.block > 0 ? " blockSize=\"" + std::to_string(c.block) + "\"" : "")
+          << (c.forceOrder.empty() ? "" : " forceOrder=\"" + c.forceOrder + "\"") << "/>\n";
     s << "  <Node name=\"body\">\n";
     if (!c.mesh.empty())
         s << "    <MeshLoader name=\"loader\" filename=\"" << fs::absolute(c.mesh).string() << "\"/>\n";

@@ -191,7 +191,8 @@ void printCase(const std::vector<Case>& cs, const std::vector<Timed>& ts, const 
                     ", \"threads\": " + std::to_string(c.threads) + ", \"precision\": \"" +
                     (c.reference ? std::string("double") : c.precision) + "\"" +
                     (c.nodeBuffers.empty() || c.reference || c.forcefield != "TLED" ? "" : ", \"node_buffers\": \"" + c.nodeBuffers + "\"") +
-                    (c.device.empty() ? "" : ", \"device\": \"" + c.device + "\"") + (c.block > 0 ? ", \"block\": " + std::to_string(c.block) : "") + ", \"steps\": " + std::to_string(c.steps);
+                    (c.device.empty() ? "" : ", \"device\": \"" + c.device + "\"") + (c.block > 0 ? ", \"block\": " + std::to_string(c.block) : "") +
+                    (c.forceOrder.empty() ? "" : ", \"force_order\": \"" + c.forceOrder + "\"") + ", \"steps\": " + std::to_string(c.steps);
     s += fmt(", \"ms_per_step\": %.5f", med) + fmt(", \"ms_min\": %.5f", *fastest) + fmt(", \"ms_max\": %.5f", *slowest);
     s += fmt(", \"median_step_ms\": %.5f", st.median) + fmt(", \"p90_step_ms\": %.5f", st.p90) + fmt(", \"p99_step_ms\": %.5f", st.p99);
     if (t.group > 1) s += ", \"step_group\": " + std::to_string(t.group);

@@ -25,6 +25,7 @@ usage:
                [--element tetrahedra6|tetrahedra5|hexahedra] [--steps N] [--threads T] [--repeat R]
                [--viscous] [--precision double|mixed] [--node-buffers auto|range|compact]
                [--determinism] [--reference] [--contend] [--device cpu|cuda] [--cuda-block B]
+               [--cuda-forces element|node]
   fascia-bench --suite [NAME] [--steps N] [--repeat R] [--reference] [--contend] [--cubes LIST]
   fascia-bench --overhead N [--steps N] [--repeat R]
   fascia-bench --load SCENE.xml [--repeat R]
@@ -51,6 +52,8 @@ usage:
                   windows (median_step_ms is a window's mean); bytes_per_element_step counts the
                   device step's arrays (CudaStep::layoutBytes)
   --cuda-block B  threads per block of the device's launches (CudaStep blockSize; default 256)
+  --cuda-forces O where the device's element kernels write their corner forces (CudaStep
+                  forceOrder): element (default) or node (node order: the gather reads one run)
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
@@ -359,6 +362,9 @@ void suiteGpu(const Case& c, const SuiteOptions& o) {
         Case e = cases[0];  // HEML's edge form on the same tetrahedra
         e.forcefield = "HEML";
         cases.push_back(e);
+        Case o = cases[0];  // the corner forces in node order (the same bits; a choice of speed)
+        o.forceOrder = "node";
+        cases.push_back(o);
         line(cases);
     }
     for (int cube : o.cubes.empty() ? std::vector<int>{150} : o.cubes)  // 6 cube^3 tetrahedra
@@ -436,6 +442,7 @@ int main(int argc, char** argv) {
         else if (a == "--contend") c.contend = true;
         else if (a == "--device") c.device = str("--device");
         else if (a == "--cuda-block") c.block = parseInt(next(), "--cuda-block");
+        else if (a == "--cuda-forces") c.forceOrder = str("--cuda-forces");
         else if (a == "--scene") printScene = true;
         else if (a == "--reference") options.reference = true;
         else if (a == "--cubes") options.cubes = parseList(next(), "--cubes");
@@ -463,8 +470,12 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --precision is double or mixed" << (c.device.empty() ? "" : " on the CPU, double or float on --device cuda") << "\n";
         return 1;
     }
-    if (c.block > 0 && c.device.empty()) {
-        std::cerr << "fascia-bench: --cuda-block needs --device cuda (or emulate)\n";
+    if ((c.block > 0 || !c.forceOrder.empty()) && c.device.empty()) {
+        std::cerr << "fascia-bench: --cuda-block and --cuda-forces need --device cuda (or emulate)\n";
+        return 1;
+    }
+    if (!c.forceOrder.empty() && c.forceOrder != "element" && c.forceOrder != "node") {
+        std::cerr << "fascia-bench: --cuda-forces is element or node\n";
         return 1;
     }
     if (!c.device.empty() && (c.reference || c.contend)) {

@@ -412,6 +412,11 @@ private:
         m_tet.upload(h.tet, s);
         m_slotStart.upload(h.slotStart, s);
         m_slots.upload(h.slots, s);
+        m_tetSlot.upload(h.tetSlot, s);
+        m_hexSlot.upload(h.hexSlot, s);
+        m_triSlot.upload(h.triSlot, s);
+        m_quadSlot.upload(h.quadSlot, s);
+        m_sf.upload(h.sf, s);
         m_dN.upload(h.dN, s);
         m_vol.upload(h.vol, s);
         m_ef.upload(h.ef, s);
@@ -483,6 +488,11 @@ private:
         m_d.hY = m_hY.get();
         m_d.slotStart = m_slotStart.get();
         m_d.slots = m_slots.get();
+        m_d.tetSlot = m_tetSlot.get();  // (null when empty: the forces by element)
+        m_d.hexSlot = m_hexSlot.get();
+        m_d.triSlot = m_triSlot.get();
+        m_d.quadSlot = m_quadSlot.get();
+        m_d.sf = m_sf.get();
         m_d.ext = m_ext.get();
         m_d.nLoads = h.nLoads;
         m_d.loadF = m_loadF.get();
@@ -511,8 +521,8 @@ private:
     bool m_central;
     cudaStream_t m_stream = nullptr;
     DeviceArray<int> m_tet, m_hex, m_slotStart, m_tri, m_quad, m_triLoad, m_quadLoad;
-    DeviceArray<std::uint32_t> m_slots;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du, m_react;
+    DeviceArray<std::uint32_t> m_slots, m_tetSlot, m_hexSlot, m_triSlot, m_quadSlot;
+    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du, m_react, m_sf;
     DeviceArray<T> m_fa, m_fb, m_hfa, m_hfb;  ///< the fibre directions per element (empty without fibre arrays)
     DeviceArray<T> m_eV, m_eG, m_eInvDetV, m_ew4, m_ew6, m_ekk, m_elen0;  ///< HEML's (StepSetup::Form::Edges)
     DeviceArray<std::uint32_t> m_hold;

@@ -12,6 +12,7 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
     b.state = g.state;
     // every component is checked before the device: a scene the GPU cannot run says so anywhere
     b.setup = buildStepSetup(*this, g);
+    b.setup.forcesInNodeOrder = m_forceOrder.get() == "node";
     const Precision p = m_precision.get() == "float" ? Precision::Float : Precision::Double;
     b.precision = p;
     if (m_emulate.get()) {
@@ -174,6 +175,8 @@ core::LayoutBytes CudaStep::layoutBytes() const {
         out.elementData += nTri * (4 * I + 6 * T + 2 * 3 * T) + nQ * (5 * I + 9 * T + 2 * 12 * T);
         // the slot lists of the gather
         out.buffers += (n + 1) * I + (4 * nT + 8 * nH + 3 * nTri + 4 * nQ) * I;
+        // in node order: each corner reads its slot's position (and a triangle writes its force 3 times)
+        if (st.forcesInNodeOrder) out.buffers += (4 * nT + 8 * nH + 3 * nTri + 4 * nQ) * I + nTri * 2 * 2 * 3 * T;
     }
     return out;
 }

@@ -49,6 +49,10 @@ public:
         "run the device step's kernel bodies on the CPU, one thread, over the same data layout (for tests without a GPU; slow)"), false};
     core::Param<int> m_blockSize{this, core::ParamSpec("blockSize").min(32).max(1024).help(
         "threads per block of the kernel launches, or fewer where a kernel's registers allow fewer (performance only: the result is the same for any value)"), 256};
+    core::Param<std::string> m_forceOrder{this, core::ParamSpec("forceOrder").choices({"element", "node"}).help(
+        "where the element kernels write their corner forces: by element (the node kernel gathers them from scattered records), "
+        "or in node order (each element scatters its corners, the node kernel reads one contiguous run); the same bits either "
+        "way, a choice of speed for a GPU to measure"), "element"};
     core::Param<int> m_checkEvery{this, core::ParamSpec("checkEvery").min(1).help(
         "the host reads the device's record of a state that is not finite every N steps (and whenever it reads the state); "
         "each read waits for the queued steps, so 1 costs speed on small meshes"), 100};

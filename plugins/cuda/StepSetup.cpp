@@ -395,18 +395,25 @@ void buildSlots(StepSetup& s) {
     s.slots.resize(s.tet.size() + s.hex.size() + s.tri.size() + s.quad.size());
     // by element (tetrahedra, then hexahedra), then corner: the order of the node's sum (a node is one
     // corner of an element at most)
+    // (and each corner's position among the slots, StepArrays tetSlot ... for the forces in node order)
     const auto add = [&](int node, size_t element, size_t a) {
-        s.slots[static_cast<size_t>(fill[static_cast<size_t>(node)]++)] = static_cast<std::uint32_t>(8 * element + a);
+        const std::uint32_t at = static_cast<std::uint32_t>(fill[static_cast<size_t>(node)]++);
+        s.slots[at] = static_cast<std::uint32_t>(8 * element + a);
+        return at;
     };
-    for (size_t e = 0; e < nT; ++e)
-        for (size_t a = 0; a < 4; ++a) add(s.tet[a * nT + e], e, a);
-    for (size_t e = 0; e < nH; ++e)
-        for (size_t a = 0; a < 8; ++a) add(s.hex[a * nH + e], nT + e, a);
     const size_t nTri = static_cast<size_t>(s.nTris), nQ = static_cast<size_t>(s.nQuads);
+    s.tetSlot.resize(4 * nT);
+    s.hexSlot.resize(8 * nH);
+    s.triSlot.resize(3 * nTri);
+    s.quadSlot.resize(4 * nQ);
+    for (size_t e = 0; e < nT; ++e)
+        for (size_t a = 0; a < 4; ++a) s.tetSlot[4 * e + a] = add(s.tet[a * nT + e], e, a);
+    for (size_t e = 0; e < nH; ++e)
+        for (size_t a = 0; a < 8; ++a) s.hexSlot[8 * e + a] = add(s.hex[a * nH + e], nT + e, a);
     for (size_t f = 0; f < nTri; ++f)
-        for (size_t a = 0; a < 3; ++a) add(s.tri[a * nTri + f], nT + nH + f, a);
+        for (size_t a = 0; a < 3; ++a) s.triSlot[3 * f + a] = add(s.tri[a * nTri + f], nT + nH + f, a);
     for (size_t f = 0; f < nQ; ++f)
-        for (size_t a = 0; a < 4; ++a) add(s.quad[a * nQ + f], nT + nH + nTri + f, a);
+        for (size_t a = 0; a < 4; ++a) s.quadSlot[4 * f + a] = add(s.quad[a * nQ + f], nT + nH + nTri + f, a);
 }
 
 StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGroup& g) {

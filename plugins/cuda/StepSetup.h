@@ -38,6 +38,10 @@ struct StepSetup {
     std::vector<const core::PressureLoad*> pressures;
     std::vector<int> slotStart;
     std::vector<std::uint32_t> slots;
+    /// each corner's position among the slots (StepArrays tetSlot, ...), and whether the element
+    /// kernels write their forces there (CudaStep forceOrder="node") or by element
+    std::vector<std::uint32_t> tetSlot, hexSlot, triSlot, quadSlot;
+    bool forcesInNodeOrder = false;
     std::vector<double> ext, mass, invMass;
     std::vector<const core::NodalLoad*> loads;  ///< the ConstantForce components with a curve (StepArrays loadF)
     std::vector<double> loadF;                  ///< their forces at c = 1, see StepArrays
@@ -98,7 +102,8 @@ template <class T>
 struct StepArraysHost {
     int nTets = 0, nHexes = 0, nNodes = 0;
     std::vector<int> tet, hex, slotStart;
-    std::vector<std::uint32_t> slots;
+    std::vector<std::uint32_t> slots, tetSlot, hexSlot, triSlot, quadSlot;
+    std::vector<T> sf;  ///< the forces in node order (empty by element)
     std::vector<T> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
     std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du, react;
     std::vector<T> fa, fb, hfa, hfb;  ///< the fibre directions per element (empty without fibre arrays)
@@ -152,6 +157,11 @@ struct StepArraysHost {
         d.quadLoad = quadLoad.data();
         d.tf = tf.data();
         d.qf = qf.data();
+        d.tetSlot = tetSlot.empty() ? nullptr : tetSlot.data();
+        d.hexSlot = hexSlot.empty() ? nullptr : hexSlot.data();
+        d.triSlot = triSlot.empty() ? nullptr : triSlot.data();
+        d.quadSlot = quadSlot.empty() ? nullptr : quadSlot.data();
+        d.sf = sf.empty() ? nullptr : sf.data();
         d.loadF = loadF.data();
         d.mass = mass.data();
         d.invMass = invMass.data();
@@ -179,7 +189,8 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.slots = s.slots;
     h.dN = conv(s.dN);
     h.vol = conv(s.vol);
-    h.ef.assign(12 * static_cast<size_t>(s.nTets), T(0));
+    const bool byNode = s.forcesInNodeOrder;  // (then the slots' records instead of the elements')
+    h.ef.assign(byNode ? 0 : 12 * static_cast<size_t>(s.nTets), T(0));
     h.eV = conv(s.eV);
     h.eG = conv(s.eG);
     h.eInvDetV = conv(s.eInvDetV);
@@ -193,7 +204,7 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.hgC = conv(s.hgC);
     h.hvol = conv(s.hvol);
     h.hgK = conv(s.hgK);
-    h.hef.assign(24 * static_cast<size_t>(s.nHexes), T(0));
+    h.hef.assign(byNode ? 0 : 24 * static_cast<size_t>(s.nHexes), T(0));
     h.fa = conv(s.fa);
     h.fb = conv(s.fb);
     h.hfa = conv(s.hfa);
@@ -211,8 +222,15 @@ StepArraysHost<T> toArrays(const StepSetup& s) {
     h.quadLoad = s.quadLoad;
     h.triD = conv(s.triD);
     h.quadD = conv(s.quadD);
-    h.tf.assign(3 * static_cast<size_t>(s.nTris), T(0));
-    h.qf.assign(12 * static_cast<size_t>(s.nQuads), T(0));
+    h.tf.assign(byNode ? 0 : 3 * static_cast<size_t>(s.nTris), T(0));
+    h.qf.assign(byNode ? 0 : 12 * static_cast<size_t>(s.nQuads), T(0));
+    if (byNode) {
+        h.tetSlot = s.tetSlot;
+        h.hexSlot = s.hexSlot;
+        h.triSlot = s.triSlot;
+        h.quadSlot = s.quadSlot;
+        h.sf.assign(3 * s.slots.size(), T(0));
+    }
     h.mass = conv(s.mass);
     h.invMass = conv(s.invMass);
     h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));

@@ -49,6 +49,8 @@ if(FASCIA_CUDA)
     --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate --precision float)
   bench_matches("\"forcefield\": \"HEML\", .*\"elements\": 384, .*\"precision\": \"double\", \"device\": \"emulate\", .*\"element_steps_per_s\": [0-9.e+]+, \"bytes_per_element_step\": [0-9.]+, "
     --forcefield HEML --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate)
+  bench_matches("\"device\": \"emulate\", \"force_order\": \"node\", .*\"element_steps_per_s\": [0-9.e+]+, "
+    --forcefield TLED --material NeoHookean --cube 4 --steps 20 --repeat 1 --device emulate --cuda-forces node)
   execute_process(COMMAND ${FASCIA_BENCH} --forcefield TLED --cube 4 --steps 5 --repeat 1 --device cuda
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
   if(NOT (rc EQUAL 0 AND out MATCHES "\"device\": \"cuda\"") AND NOT (rc EQUAL 2 AND err MATCHES "CudaStep.*no usable CUDA device"))
@@ -62,6 +64,10 @@ foreach(args "--device;opencl" "--device;cuda;--forcefield;TLED;--precision;mixe
   endif()
 endforeach()
 execute_process(COMMAND ${FASCIA_BENCH} --cuda-block 128 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
-if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --cuda-block needs --device")
+if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --cuda-block and --cuda-forces need --device")
   message(FATAL_ERROR "fascia-bench --cuda-block without --device: exit ${rc}, ${err}")
+endif()
+execute_process(COMMAND ${FASCIA_BENCH} --device emulate --cuda-forces slots RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "fascia-bench: --cuda-forces is element or node")
+  message(FATAL_ERROR "fascia-bench --cuda-forces slots: exit ${rc}, ${err}")
 endif()

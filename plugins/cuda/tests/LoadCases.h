@@ -42,4 +42,44 @@ inline const std::string kPressures =
 /// The pressures follow the CPU (triangles on the tetrahedral grid, quadrilaterals on the mixed mesh's).
 inline void pressuresFollowTheCpu(const std::string& root, double tol) { followsTheCpu(kPressures, root, tol); }
 
+/// The corner forces in node order (CudaStep forceOrder="node") give bitwise the forces and the
+/// trajectory of the forces by element: TLED on the tetrahedral and the mixed mesh (hexahedra,
+/// triangles and quadrilaterals under pressure) and HEML, with the pressures, a Prony series and the
+/// lift (200 steps). make(setup, precision): a runner; rootOpen: the CudaStep element without "/>".
+template <class MakeRunner>
+void forceOrderIsBitwise(MakeRunner&& make, const std::string& rootOpen) {
+    const std::string precision = GENERATE(as<std::string>{}, "double", "float");
+    const std::string ff = GENERATE(as<std::string>{}, "TLEDForceField tets", "TLEDForceField mixed", "HEMLForceField tets");
+    CAPTURE(precision, ff);
+    const bool mixed = ff.find("mixed") != std::string::npos;
+    BodyParts parts{"<GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.02 0.02 0.03\" resolution=\"2 2 3\" element=\"" +
+                        std::string(mixed ? "hexahedra" : "tetrahedra6") + "\"/>",
+                    deviceLaw("TransverselyIsotropic").element, mixed ? mixedElements() : "", ff.substr(0, ff.find(' '))};
+    const std::string body = kPressures + kLift + prony();
+    // one element pass, through runners
+    ForceProbe p = probeForces(scene(parts, "", body), 1.0);
+    REQUIRE(p.setup.nTris + p.setup.nQuads > 0);
+    const cuda::Precision pr = precision == "float" ? cuda::Precision::Float : cuda::Precision::Double;
+    std::vector<double> f[2];
+    for (int k = 0; k < 2; ++k) {
+        p.setup.forcesInNodeOrder = k == 1;
+        CHECK(cuda::toArrays<double>(p.setup).sf.size() == (k == 1 ? 3 * p.setup.slots.size() : 0));
+        auto runner = make(p.setup, pr);
+        runner->setState(p.u, p.v);
+        runner->elementPass();
+        runner->internalForces(f[k]);
+    }
+    CHECK(f[1] == f[0]);
+    // 200 steps through CudaStep
+    const auto run = [&](const std::string& order) {
+        auto sim = core::Simulation::fromString(
+            scene(parts, rootOpen + " precision=\"" + precision + "\" forceOrder=\"" + order + "\"/>", body));
+        sim->run(200);
+        return std::pair{sim->state("mo").x(), sim->state("mo").v()};
+    };
+    const auto byElement = run("element"), byNode = run("node");
+    CHECK(byNode.first == byElement.first);
+    CHECK(byNode.second == byElement.second);
+}
+
 } // namespace cudatest::loads

@@ -205,6 +205,11 @@ TEST_CASE("CudaStep on the GPU applies SurfacePressure's follower load as the CP
     loads::pressuresFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
 }
 
+TEST_CASE("CudaStep on the GPU gives bitwise the same forces and trajectory with the corner forces in node order", "[CudaStep]") {
+    requireDevice();
+    loads::forceOrderIsBitwise([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); }, "<CudaStep");
+}
+
 TEST_CASE("The GPU element kernels give TLED's forces with materials per group and fibres per element", "[CudaStep][groupMaterials]") {
     requireDevice();
     groups::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });

@@ -25,3 +25,8 @@ TEST_CASE("More ConstantForce components with a load curve than the device step 
     CHECK(e.find("ConstantForce 'f" + std::to_string(cuda::kMaxLoads) + "'") != std::string::npos);
     CHECK(e.find("beyond the first " + std::to_string(cuda::kMaxLoads)) != std::string::npos);
 }
+
+TEST_CASE("CudaStep emulated gives bitwise the same forces and trajectory with the corner forces in node order", "[CudaStep]") {
+    loads::forceOrderIsBitwise([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeEmulatedRunner(s, p); },
+                               "<CudaStep emulate=\"true\"");
+}

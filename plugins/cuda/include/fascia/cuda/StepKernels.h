@@ -40,6 +40,13 @@ namespace fascia::cuda {
 
 namespace detail {
 
+/// Where corner k of an element kind's corners (k = corners per element x e + a) writes its force:
+/// its own record of byElement, or in node order (StepArrays sf) its slot's.
+template <class T>
+FASCIA_HD FASCIA_INLINE T* cornerOut(T* byElement, const std::uint32_t* slotOf, T* sf, size_t k) {
+    return slotOf ? sf + 3 * static_cast<size_t>(slotOf[k]) : byElement + 3 * k;
+}
+
 /// u of the NN corners of element e (corner a's node at nodes[a n + e]).
 template <int NN, class T>
 FASCIA_HD FASCIA_INLINE void gatherCorners(const int* nodes, int n, int e, const T* u, elements::NodalBatch<NN, 1, T>& out) {
@@ -171,16 +178,18 @@ FASCIA_HD FASCIA_INLINE void tetForces(const StepArrays<T>& d, const ElementPara
     const detail::Fibres<T> fib = detail::fibresOf<PerElementFibres>(p, d.fa, d.fb, n, e, own);
     const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, fib, elements::deformationGradientTet(u, dN, 0), d.vol[e], d.Y, n, e);
     T s0 = 0, s1 = 0, s2 = 0;
-    T* out = d.ef + 12 * static_cast<size_t>(e);
+    const size_t c0 = 4 * static_cast<size_t>(e);
     for (int a = 1; a < 4; ++a) {
         const elements::Vec33<T> f = elements::nodalForce(P, dN.at(a - 1, 0, 0), dN.at(a - 1, 1, 0), dN.at(a - 1, 2, 0));
-        out[3 * a + 0] = f.x;
-        out[3 * a + 1] = f.y;
-        out[3 * a + 2] = f.z;
+        T* out = detail::cornerOut(d.ef, d.tetSlot, d.sf, c0 + a);
+        out[0] = f.x;
+        out[1] = f.y;
+        out[2] = f.z;
         s0 += f.x;
         s1 += f.y;
         s2 += f.z;
     }
+    T* out = detail::cornerOut(d.ef, d.tetSlot, d.sf, c0);
     out[0] = -s0;
     out[1] = -s1;
     out[2] = -s2;
@@ -209,9 +218,10 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
     const elements::Mat33<T> P = detail::elementStress<Relaxed>(p, fib, F, d.hvol[e], d.hY, n, e);
     elements::NodalBatch<8, 1, T> f;
     elements::hexNodalForces(P, d.hgK[e], elements::NodeRows<1, T>{h}, cq, dN, 0, f);
-    T* out = d.hef + 24 * static_cast<size_t>(e);
-    for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < 3; ++i) out[3 * a + i] = f.v[a][i][0];
+    for (int a = 0; a < 8; ++a) {
+        T* out = detail::cornerOut(d.hef, d.hexSlot, d.sf, 8 * static_cast<size_t>(e) + a);
+        for (int i = 0; i < 3; ++i) out[i] = f.v[a][i][0];
+    }
 }
 
 namespace detail {
@@ -242,9 +252,10 @@ FASCIA_HD FASCIA_INLINE void currentEdges(const StepArrays<T>& d, int e, T ev[6]
 /// The element's nodal forces f (EdgeForm.h edgeNodalForces) written to its own slots of ef.
 template <class T>
 FASCIA_HD FASCIA_INLINE void storeCorners(const StepArrays<T>& d, int e, const T f[4][3]) {
-    T* out = d.ef + 12 * static_cast<size_t>(e);
-    for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < 3; ++i) out[3 * a + i] = f[a][i];
+    for (int a = 0; a < 4; ++a) {
+        T* out = cornerOut(d.ef, d.tetSlot, d.sf, 4 * static_cast<size_t>(e) + a);
+        for (int i = 0; i < 3; ++i) out[i] = f[a][i];
+    }
 }
 
 /// HEML's relaxation of the link coefficients g by the one series of q (HEMLKernel.h relax, HEML
@@ -337,9 +348,12 @@ FASCIA_HD FASCIA_INLINE void faceForces(const StepArrays<T>& d, const FaceParams
     if (k < d.nTris) {
         const elements::Vec33<T> f = elements::trianglePressureForce(rel(d.tri, d.triD, d.nTris, k, 1), rel(d.tri, d.triD, d.nTris, k, 2),
                                                                      q.p[d.triLoad[k]]);
-        d.tf[3 * k + 0] = f.x;
-        d.tf[3 * k + 1] = f.y;
-        d.tf[3 * k + 2] = f.z;
+        for (int a = 0; a < (d.triSlot ? 3 : 1); ++a) {
+            T* out = d.triSlot ? d.sf + 3 * static_cast<size_t>(d.triSlot[3 * k + a]) : d.tf + 3 * static_cast<size_t>(k);
+            out[0] = f.x;
+            out[1] = f.y;
+            out[2] = f.z;
+        }
         return;
     }
     const int f = k - d.nTris;
@@ -348,9 +362,10 @@ FASCIA_HD FASCIA_INLINE void faceForces(const StepArrays<T>& d, const FaceParams
     elements::Vec33<T> out[4];
     elements::quadPressureForces(x, q.p[d.quadLoad[f]], out);
     for (int a = 0; a < 4; ++a) {
-        d.qf[3 * (4 * f + a) + 0] = out[a].x;
-        d.qf[3 * (4 * f + a) + 1] = out[a].y;
-        d.qf[3 * (4 * f + a) + 2] = out[a].z;
+        T* o = detail::cornerOut(d.qf, d.quadSlot, d.sf, 4 * static_cast<size_t>(f) + a);
+        o[0] = out[a].x;
+        o[1] = out[a].y;
+        o[2] = out[a].z;
     }
 }
 
@@ -358,6 +373,14 @@ FASCIA_HD FASCIA_INLINE void faceForces(const StepArrays<T>& d, const FaceParams
 template <class T>
 FASCIA_HD FASCIA_INLINE elements::Vec33<T> gatherForce(const StepArrays<T>& d, int node) {
     T f0 = 0, f1 = 0, f2 = 0;
+    if (d.sf) {  // (in node order: one contiguous run, the same order)
+        for (int k = d.slotStart[node]; k < d.slotStart[node + 1]; ++k) {
+            f0 += d.sf[3 * static_cast<size_t>(k) + 0];
+            f1 += d.sf[3 * static_cast<size_t>(k) + 1];
+            f2 += d.sf[3 * static_cast<size_t>(k) + 2];
+        }
+        return {f0, f1, f2};
+    }
     for (int k = d.slotStart[node]; k < d.slotStart[node + 1]; ++k) {
         const std::uint32_t s = d.slots[k];
         const int e = static_cast<int>(s >> 3), a = static_cast<int>(s & 7u);

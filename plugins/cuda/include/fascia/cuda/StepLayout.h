@@ -60,6 +60,13 @@ namespace fascia::cuda {
 ///   triLoad[f], quadLoad[f]      the face's SurfacePressure (FaceParams::p)
 ///   tf[3 f + i]                  the force on each corner of triangle f (one for all three)
 ///   qf[3 (4 f + a) + i]          the force on corner a of quadrilateral f
+/// The corner forces in node order instead (CudaStep forceOrder="node", for a GPU to compare the two):
+///   tetSlot[4 e + a], hexSlot[8 e + a], triSlot[3 f + a], quadSlot[4 f + a]
+///                                the position of each corner's slot in `slots` (below)
+///   sf[3 s + i]                  the force of slot s: each element writes its corners there (a
+///                                triangle its one force to its 3 corners), so that the node kernel
+///                                reads its slots' forces as one contiguous run, in the same order
+///                                (the same bits); ef, hef, tf and qf are then empty
 /// Node n, component i:
 ///   slots[slotStart[n] .. slotStart[n + 1])  its (element, corner) pairs as 8 e + a, e counting the
 ///                                tetrahedra, then the hexahedra (e - nTets), then the triangles
@@ -118,6 +125,11 @@ struct StepArrays {
     const int* quadLoad = nullptr;
     T* tf = nullptr;
     T* qf = nullptr;
+    const std::uint32_t* tetSlot = nullptr;
+    const std::uint32_t* hexSlot = nullptr;
+    const std::uint32_t* triSlot = nullptr;
+    const std::uint32_t* quadSlot = nullptr;
+    T* sf = nullptr;
     const int* slotStart = nullptr;
     const std::uint32_t* slots = nullptr;
     const T* ext = nullptr;
