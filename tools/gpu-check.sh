@@ -9,7 +9,8 @@
 #      through ctest, one case a process, on all cores (ctest.log; the per-case output of any
 #      failure in failures.log);
 #   5. runs `fascia-bench --suite gpu` (bench.json: one JSON object a case; bench.log its errors),
-#      then the split of a step between its kernels and two other block sizes at 2M tetrahedra,
+#      then the split of a step between its kernels (the corner forces by element and in node
+#      order, CudaStep forceOrder) and two other block sizes at 2M tetrahedra,
 #      unless FASCIA_GPU_BENCH=0, for at most FASCIA_GPU_BENCH_SECONDS (default 240; the quick
 #      figures come first, each line is written when it is done);
 #   6. writes SUMMARY.txt into OUT_DIR.
@@ -82,10 +83,13 @@ if [ "${FASCIA_GPU_BENCH:-1}" != 0 ]; then
     # the split of a step between its two kernels (FASCIA_CUDA_TIMING: each pass timed and waited
     # for), and other block sizes than the default 256, at 2M tetrahedra (appended to bench.json and
     # bench.log)
+    # (and with the corner forces in node order, CudaStep forceOrder: which of the two kernels gains)
     for p in float double; do
-        (cd "$src" && FASCIA_CUDA_TIMING=1 timeout 60 "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean \
-            --cube 70 --precision $p --steps 100 --repeat 1 >> "$out/bench.json" 2>> "$out/bench.log")
-        say "  $p, 2.06M tetrahedra: $(grep cuda-timing "$out/bench.log" | tail -1)"
+        for order in element node; do
+            (cd "$src" && FASCIA_CUDA_TIMING=1 timeout 60 "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean \
+                --cube 70 --precision $p --steps 100 --repeat 1 --cuda-forces $order >> "$out/bench.json" 2>> "$out/bench.log")
+            say "  $p, 2.06M tetrahedra, forces by $order: $(grep cuda-timing "$out/bench.log" | tail -1)"
+        done
     done
     for b in 128 512; do
         (cd "$src" && timeout 60 "$build/bin/fascia-bench" --device cuda --forcefield TLED --material NeoHookean \
