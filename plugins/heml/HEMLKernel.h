@@ -27,13 +27,6 @@ template <class T>
 using SVec = std::vector<T, simd::AlignedAllocator<T>>;
 using FVec = SVec<float>;
 
-/// The smallest squared length / |J| the loop divides by: 1e-300 in double (as before the
-/// template), 1e-30 in float (1e-300 would round to 0 there).
-template <class T>
-constexpr T kTiny = T(1e-300);
-template <>
-constexpr float kTiny<float> = 1e-30f;
-
 /// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lesson 3).
 constexpr int kLanes = 16;
 /// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
@@ -254,7 +247,7 @@ FASCIA_INLINE void generalisedForces(const HEMLData& d, Chunk<T>& c, size_t e0, 
             // W = k/2 (l - l0)^2 per edge (eq. (38)); dW/d(l^2) = k/2 (1 - l0 / l)
             W = T(0);
             for (int k = 0; k < 6; ++k)
-                g[k] = elements::springLink(c.l[k][j] > kTiny<T> ? c.l[k][j] : kTiny<T>, el.kk[k][e0 + j], el.len0[k][e0 + j], W);
+                g[k] = elements::springLink(c.l[k][j], el.kk[k][e0 + j], el.len0[k][e0 + j], W);
             Qiso = Qvol = T(0);
         } else {
             W = V * c.W[j];
@@ -296,7 +289,7 @@ FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift
         const T l[6] = {c.l[0][j], c.l[1][j], c.l[2][j], c.l[3][j], c.l[4][j], c.l[5][j]};
         const T g[6] = {c.gk[0][j], c.gk[1][j], c.gk[2][j], c.gk[3][j], c.gk[4][j], c.gk[5][j]};
         T R[6];
-        elements::relaxedLinks(elements::gramOfLengths(l), c.J[j], wIso * c.Qi[j] + wVol * c.Qv[j], invDetV[j], wIso, g, kTiny<T>, R);
+        elements::relaxedLinks(elements::gramOfLengths(l), c.J[j], wIso * c.Qi[j] + wVol * c.Qv[j], invDetV[j], wIso, g, R);
         for (int k = 0; k < 6; ++k) rel[k][j] = R[k];
     }
 }

@@ -226,13 +226,6 @@ FASCIA_HD FASCIA_INLINE void hexForces(const StepArrays<T>& d, const ElementPara
 
 namespace detail {
 
-/// The smallest squared length and |J| the edge form divides by (HEMLKernel.h kTiny).
-template <class T>
-FASCIA_HD constexpr T edgeTiny() {
-    if constexpr (sizeof(T) == sizeof(float)) return T(1e-30f);
-    else return T(1e-300);
-}
-
 /// The six current edges of tetrahedron e (EdgeForm.h): v_a = V_a + (u_a - u_0) for a = 1..3 from
 /// its rest edges eV, then v4 = v2 - v1, v5 = v3 - v2, v6 = v1 - v3 (HEML eq. (A.2)).
 template <class T>
@@ -267,7 +260,7 @@ FASCIA_HD FASCIA_INLINE void relaxLinks(const PronyParams<T>& q, const elements:
     if (q.restShift != T(0)) elements::shiftVolumeTerms(Qi, Qv, V, q.restShift, J0, J);
     const T wIso = q.iso[0] ? T(1) : T(0), wVol = q.vol[0] ? T(1) : T(0);
     T R[6], sum[6] = {0, 0, 0, 0, 0, 0};
-    elements::relaxedLinks(D, J, wIso * Qi + wVol * Qv, invDetV, wIso, g, edgeTiny<T>(), R);
+    elements::relaxedLinks(D, J, wIso * Qi + wVol * Qv, invDetV, wIso, g, R);
     for (int t = 0; t < kMaxTerms && t < q.terms[0]; ++t)
         for (int c = 0; c < 6; ++c) {
             T& y = Y[(6 * t + c) * n + e];
@@ -327,7 +320,7 @@ FASCIA_HD FASCIA_INLINE void springForces(const StepArrays<T>& d, int e) {
     detail::currentEdges(d, e, ev);
     for (int k = 0; k < 6; ++k) {
         const T L2 = ev[k][0] * ev[k][0] + ev[k][1] * ev[k][1] + ev[k][2] * ev[k][2];
-        g[k] = elements::springLink(L2 > detail::edgeTiny<T>() ? L2 : detail::edgeTiny<T>(), d.ekk[k * n + e], d.elen0[k * n + e], W);
+        g[k] = elements::springLink(L2, d.ekk[k * n + e], d.elen0[k * n + e], W);
     }
     T f[4][3];
     elements::edgeNodalForces(g, T(0), ev, f);

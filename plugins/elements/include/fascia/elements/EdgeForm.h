@@ -23,6 +23,14 @@ namespace fascia::elements {
 FASCIA_HD constexpr int edgeA(int k) { return k < 3 ? 0 : k - 2; }
 FASCIA_HD constexpr int edgeB(int k) { return k < 3 ? k + 1 : (k == 5 ? 1 : k - 1); }
 
+/// The smallest squared length and |J| the edge form divides by: 1e-300 in double, 1e-30 in float
+/// (1e-300 would round to 0 there).
+template <class T>
+FASCIA_HD constexpr T edgeTiny() {
+    if constexpr (sizeof(T) == sizeof(float)) return T(1e-30f);
+    else return T(1e-300);
+}
+
 /// tr(D_k M) for the six D_k of eq. (A.6) and a symmetric M = (M11 M22 M33 M12 M23 M13): the map
 /// from a 3x3 tensor in the rest edge basis to the six link coefficients.
 template <class T>
@@ -100,11 +108,12 @@ FASCIA_HD FASCIA_INLINE void linkCoefficients(const T Sg[6], T Vol, T g[6]) {
     for (int k = 0; k < 6; ++k) g[k] *= Vol;
 }
 
-/// A spring of stiffness kk and rest length l0 on an edge of squared length L2 (> 0; HEML eq. (38)):
-/// its energy k/2 (l - l0)^2 added to W, and its link coefficient dW/d(l^2) = k/2 (1 - l0 / l).
+/// A spring of stiffness kk and rest length l0 on an edge of squared length L2 (HEML eq. (38); at
+/// least edgeTiny: a collapsed edge stays finite): its energy k/2 (l - l0)^2 added to W, and its
+/// link coefficient dW/d(l^2) = k/2 (1 - l0 / l).
 template <class T>
 FASCIA_HD FASCIA_INLINE T springLink(T L2, T kk, T l0, T& W) {
-    const T len = std::sqrt(L2);
+    const T len = std::sqrt(L2 > edgeTiny<T>() ? L2 : edgeTiny<T>());
     W += T(0.5) * kk * (len - l0) * (len - l0);
     return T(0.5) * kk * (T(1) - l0 / len);
 }
@@ -121,9 +130,10 @@ FASCIA_HD FASCIA_INLINE void shiftVolumeTerms(T& Qi, T& Qv, T Vol, T shift, T J0
 
 /// The relaxed part as link coefficients R_k (HEMLForceField.h, HEMLKernel.h relax): wIso g_k plus
 /// the relaxed volume term Q through dJ/dl_k = J/2 tr(D^-1 D_k) = tr(D_k invDetV^2 cof(D) / (2 J))
-/// (Jacobi's formula; det D = (J det V)^2); tiny: the smallest |J| divided by.
+/// (Jacobi's formula; det D = (J det V)^2; |J| at least edgeTiny).
 template <class T>
-FASCIA_HD FASCIA_INLINE void relaxedLinks(const Sym33<T>& D, T J, T Q, T invDetV, T wIso, const T g[6], T tiny, T R[6]) {
+FASCIA_HD FASCIA_INLINE void relaxedLinks(const Sym33<T>& D, T J, T Q, T invDetV, T wIso, const T g[6], T R[6]) {
+    constexpr T tiny = edgeTiny<T>();
     const T D11 = D.xx, D22 = D.yy, D33 = D.zz, D12 = D.xy, D23 = D.yz, D13 = D.xz;
     const T iJ = T(1) / (std::abs(J) > tiny ? J : (J < T(0) ? -tiny : tiny));
     const T s = T(0.5) * Q * invDetV * invDetV * iJ;
