@@ -317,7 +317,10 @@ double TeamChoice::median(int t) const {
     if (n == 0) return INFINITY;
     double v[kKeep];
     std::copy(seconds[t], seconds[t] + n, v);
-    std::sort(v, v + n);
+    // (an insertion sort of the at most kKeep samples: std::sort's 16-element threshold made GCC 12
+    // warn about bounds it never reaches)
+    for (int i = 1; i < n; ++i)
+        for (int j = i; j > 0 && v[j - 1] > v[j]; --j) std::swap(v[j - 1], v[j]);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
