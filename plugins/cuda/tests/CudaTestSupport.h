@@ -144,6 +144,11 @@ inline std::string scene(const Law& law, const std::string& root, const std::str
     return scene(BodyParts{grid, law.element, mesh == Mesh::Mixed ? mixedElements() : std::string()}, root, body, integrator);
 }
 
+/// The CudaStep of a scene's root node in that precision ("double" or "float"): through the CPU
+/// emulation of its kernels, or on the GPU.
+inline std::string emulated(const std::string& precision) { return "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>"; }
+inline std::string onGpu(const std::string& precision) { return "<CudaStep precision=\"" + precision + "\"/>"; }
+
 /// Deforms the state: x = A X + a jitter (seeded), v = 0.
 inline void deform(core::BaseMechanicalState& mo, double scale) {
     std::mt19937 rng(7);

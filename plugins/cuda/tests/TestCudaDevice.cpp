@@ -45,7 +45,7 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[Cu
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(law.name, precision);
-    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
     CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
 }
@@ -56,7 +56,7 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000
     const Law law = GENERATE(from_range(deviceLaws()));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(meshName(mesh), law.name, precision);
-    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
     CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
 }
@@ -70,7 +70,7 @@ TEST_CASE("CudaStep on the GPU follows CentralDifference and PrescribedDisplacem
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(integrator, lift, meshName(mesh), precision);
     const Pair r = runBoth(deviceLaw("TransverselyIsotropic"), lift ? kLift : "", integrator, mesh,
-                           "<CudaStep precision=\"" + precision + "\"/>", 1000);
+                           onGpu(precision), 1000);
     CAPTURE(sci(r.err));
     // (CentralDifference in double: the CPU's rounding in x, test_cuda_emulation)
     const bool damped = integrator == "<CentralDifference damping=\"5\"/>", central = integrator.find("Central") != std::string::npos;
@@ -84,7 +84,7 @@ TEST_CASE("CudaStep on the GPU follows TLEDForceField with a Prony series over 1
     const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Mixed);
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(integrator, meshName(mesh), precision);
-    const Pair r = runBoth(deviceLaw("TransverselyIsotropic"), prony(), integrator, mesh, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    const Pair r = runBoth(deviceLaw("TransverselyIsotropic"), prony(), integrator, mesh, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
     const bool damped = integrator == "<CentralDifference damping=\"5\"/>", central = integrator.find("Central") != std::string::npos;
     CHECK(r.err <= (precision == "float" ? 1e-4 : damped ? 5e-9 : central ? 1e-10 : 1e-11));
@@ -100,10 +100,10 @@ TEST_CASE("CudaStep on the GPU relaxes either part, or both, of every law as TLE
     // (500 steps: see test_cuda_emulation)
     const std::string cpuError = initError(scene(law, "", prony(apply)));
     if (!cpuError.empty()) {
-        CHECK(initError(scene(law, "<CudaStep precision=\"" + precision + "\"/>", prony(apply))) == cpuError);  // refused alike
+        CHECK(initError(scene(law, onGpu(precision), prony(apply))) == cpuError);  // refused alike
         return;
     }
-    const Pair r = runBoth(law, prony(apply), "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, "<CudaStep precision=\"" + precision + "\"/>", 500);
+    const Pair r = runBoth(law, prony(apply), "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, onGpu(precision), 500);
     CAPTURE(sci(r.err));
     CHECK(r.err <= (precision == "float" ? 1e-4 : 1e-11));
 }
@@ -113,7 +113,7 @@ TEST_CASE("CudaStep on the GPU runs a series per part, of different lengths, as 
     const Law law = GENERATE(deviceLaw("CompressibleNeoHookean"), deviceLaw("HolzapfelGasserOgden"));
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(law.name, precision);
-    const Pair r = runBoth(law, kTwoSeries, "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, "<CudaStep precision=\"" + precision + "\"/>", 1000);
+    const Pair r = runBoth(law, kTwoSeries, "<SemiImplicitEuler damping=\"5\"/>", Mesh::Mixed, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
     CHECK(r.err <= (precision == "float" ? 1e-4 : 1e-11));
 }
@@ -159,7 +159,7 @@ TEST_CASE("The GPU and the emulation run the same kernel bodies to round-off", "
 TEST_CASE("CudaStep on the GPU keeps the state on the device until it is read", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
-    residency::stateStaysOnDevice("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-11);
+    residency::stateStaysOnDevice(onGpu(precision), precision == "float" ? 1e-4 : 1e-11);
 }
 
 TEST_CASE("CudaStep on the GPU takes up what a program writes into the state it read", "[CudaStep]") {
@@ -181,28 +181,28 @@ TEST_CASE("CudaStep on the GPU gives the constraints' reactions as the CPU does"
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::reactionsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+    residency::reactionsFollow(onGpu(precision), precision == "float" ? 1e-4 : 1e-9);
 }
 
 TEST_CASE("CudaStep on the GPU brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::relaxedStressesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+    residency::relaxedStressesFollow(onGpu(precision), precision == "float" ? 1e-4 : 1e-9);
 }
 
 TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::curvedForcesFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    loads::curvedForcesFollowTheCpu(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::pressuresFollowTheCpu("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    loads::pressuresFollowTheCpu(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same forces and trajectory with the corner forces in node order", "[CudaStep]") {
@@ -220,7 +220,7 @@ TEST_CASE("CudaStep on the GPU follows TLEDForceField with materials per group a
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::trajectoriesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    groups::trajectoriesFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU relaxes materials per group with fibres per element as TLEDForceField does",
@@ -228,7 +228,7 @@ TEST_CASE("CudaStep on the GPU relaxes materials per group with fibres per eleme
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::relaxedGroupsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    groups::relaxedGroupsFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory of groups with fibre arrays for any block size", "[CudaStep][groupMaterials]") {
@@ -257,14 +257,14 @@ TEST_CASE("CudaStep on the GPU follows HEMLForceField over 1000 steps, every law
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::trajectoriesFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    heml::trajectoriesFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU relaxes HEML as HEMLForceField does, either part or both, or refuses as it does", "[CudaStep][HEML][ViscoelasticProny]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::relaxedFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    heml::relaxedFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("The GPU edge-form kernel gives HEML's forces with materials per group and fibre arrays", "[CudaStep][HEML][groupMaterials]") {
@@ -277,7 +277,7 @@ TEST_CASE("CudaStep on the GPU follows HEMLForceField with materials per group a
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::groupsFollow("<CudaStep precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    heml::groupsFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same HEML trajectory for any block size", "[CudaStep][HEML]") {

@@ -12,12 +12,6 @@
 
 using namespace cudatest;
 
-namespace {
-
-std::string emulated(const std::string& precision) { return "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>"; }
-
-} // namespace
-
 TEST_CASE("The emulated element and node kernels give TLED's forces on every node", "[CudaStep]") {
     const Law law = GENERATE(from_range(deviceLaws()));
     const Mesh mesh = GENERATE(Mesh::Tets, Mesh::Hexes, Mesh::Mixed);

@@ -5,12 +5,6 @@
 
 using namespace cudatest;
 
-namespace {
-
-std::string emulated(const std::string& precision) { return "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>"; }
-
-} // namespace
-
 TEST_CASE("The emulated edge-form kernel gives HEML's forces for every law and the springs", "[CudaStep][HEML]") {
     heml::forcesMatch(cuda::makeEmulatedRunner);
 }

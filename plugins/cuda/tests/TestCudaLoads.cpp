@@ -7,13 +7,13 @@ using namespace cudatest;
 TEST_CASE("CudaStep emulated scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::curvedForcesFollowTheCpu("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    loads::curvedForcesFollowTheCpu(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("CudaStep emulated applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::pressuresFollowTheCpu("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "double" ? 1e-11 : 1e-4);
+    loads::pressuresFollowTheCpu(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
 }
 
 TEST_CASE("More ConstantForce components with a load curve than the device step takes is a located error", "[CudaStep]") {

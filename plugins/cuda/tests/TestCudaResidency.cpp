@@ -10,7 +10,7 @@ using namespace cudatest;
 
 TEST_CASE("CudaStep emulated keeps the state on the device until it is read", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
-    residency::stateStaysOnDevice("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-11);
+    residency::stateStaysOnDevice(emulated(precision), precision == "float" ? 1e-4 : 1e-11);
 }
 
 TEST_CASE("CudaStep emulated takes up what a program writes into the state it read", "[CudaStep]") {
@@ -28,11 +28,11 @@ TEST_CASE("CudaStep emulated restarts from a checkpoint bitwise as the run that 
 TEST_CASE("CudaStep emulated gives the constraints' reactions as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::reactionsFollow("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+    residency::reactionsFollow(emulated(precision), precision == "float" ? 1e-4 : 1e-9);
 }
 
 TEST_CASE("CudaStep emulated brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::relaxedStressesFollow("<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>", precision == "float" ? 1e-4 : 1e-9);
+    residency::relaxedStressesFollow(emulated(precision), precision == "float" ? 1e-4 : 1e-9);
 }
