@@ -24,9 +24,7 @@ void CudaStep::adopt(core::MechanicalGroup& g) {
         b.runner = makeCudaRunner(b.setup, p, m_blockSize.get());
     }
     b.kick.halfStepStart = b.setup.halfStepStart;
-    if (!b.setup.series.empty())
-        for (core::BaseForceField* ff : g.forceFields)
-            if (auto* h = dynamic_cast<viscoelastic::ElementHistory*>(ff)) b.history = h;
+    if (!b.setup.series.empty()) b.history = dynamic_cast<viscoelastic::ElementHistory*>(b.setup.elastic);
     b.du.assign(3 * g.state->size(), 0.0);
     upload(b, g);
     m_bodies.push_back(std::move(b));

@@ -420,7 +420,7 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     StepSetup s;
     core::BaseMechanicalState& state = *g.state;
     readIntegrator(*g.integrator, s);
-    const core::BaseForceField* elastic = nullptr;  // the element force field: TLED or HEML
+    core::BaseForceField*& elastic = s.elastic;  // the element force field: TLED or HEML
     const size_t nNodes = state.size();
     s.ext.assign(3 * nNodes, 0.0);
     Positions ext(nNodes, Vec3::Zero());

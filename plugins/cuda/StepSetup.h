@@ -28,6 +28,7 @@ struct StepSetup {
     /// The element force field: TLEDForceField (dN), or HEMLForceField, whose tetrahedra run HEML's
     /// edge form (eV, eG, eInvDetV, ew4, ew6; in its mass-spring mode ekk and elen0, no material)
     enum class Form { TLED, Edges } form = Form::TLED;
+    core::BaseForceField* elastic = nullptr;  ///< that force field
     bool springs = false;
     std::vector<double> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
     std::vector<double> hdN, hgC, hvol, hgK;  ///< hexahedra
