@@ -6,6 +6,7 @@
 #include "Statistics.h"
 
 #include "fascia/sim/LayoutBytes.h"
+#include "fascia/sim/StepTeam.h"
 
 #include <omp.h>
 
@@ -45,6 +46,7 @@ struct Times {
     std::vector<double> window;  ///< per repeat, ms per step over the timed window
     std::vector<double> steps;   ///< per sample (a step, or a group of `group` steps), ms per step
     std::vector<double> forces;  ///< per repeat, ms per force evaluation alone
+    long takeovers = 0;          ///< blocks the step team's caller took over in the timed steps
 };
 
 /// The objects a Timed refers to.
@@ -129,6 +131,7 @@ std::vector<Times> timeRounds(const std::vector<Case>& cs, std::vector<Timed>& t
             const size_t i = r % 2 == 0 ? j : nc - 1 - j;
             Timed& t = ts[i];
             omp_set_num_threads(cs[i].threads);
+            const long taken = teamTakeovers();
             const auto w0 = std::chrono::steady_clock::now();
             for (int done = 0; done < cs[i].steps;) {
                 const int m = std::min(t.group, cs[i].steps - done);
@@ -139,6 +142,7 @@ std::vector<Times> timeRounds(const std::vector<Case>& cs, std::vector<Timed>& t
                 done += m;
             }
             out[i].window.push_back(since(w0) / cs[i].steps);
+            out[i].takeovers += teamTakeovers() - taken;
             if (!t.forces) continue;
             const auto f0 = std::chrono::steady_clock::now();
             for (int k = 0; k < cs[i].steps; ++k) t.forces();
@@ -196,6 +200,7 @@ void printCase(const std::vector<Case>& cs, const std::vector<Timed>& ts, const 
     s += fmt(", \"ms_per_step\": %.5f", med) + fmt(", \"ms_min\": %.5f", *fastest) + fmt(", \"ms_max\": %.5f", *slowest);
     s += fmt(", \"median_step_ms\": %.5f", st.median) + fmt(", \"p90_step_ms\": %.5f", st.p90) + fmt(", \"p99_step_ms\": %.5f", st.p99);
     if (t.group > 1) s += ", \"step_group\": " + std::to_string(t.group);
+    if (c.threads > 1) s += ", \"takeovers\": " + std::to_string(m.takeovers);
     s += fmt(", \"ns_per_element_step\": %.4f", t.elements ? med * 1e6 / E : 0.0);
     s += fmt(", \"steps_per_s\": %.0f", 1e3 / med) + fmt(", \"element_steps_per_s\": %.4g", t.elements ? E * 1e3 / med : 0.0);
     const double perElement = double(ts[0].elements) / E;

@@ -108,7 +108,8 @@ sample divided by its count). bytes_per_element_step is what one force evaluatio
 from the force field's arrays after init (core::LayoutReport: element data, node rows, block
 buffers, also given apart per element), with forcefield_gb_per_s and step_gb_per_s the rates it
 implies at the measured times. With --contend: "contend": true, contend_core (-1: not pinned) and
-contend_cpu_s, the CPU time the competitor got.
+contend_cpu_s, the CPU time the competitor got. With more than one thread, takeovers: the blocks the
+step's caller ran again in the timed steps because their thread had lost its core (fascia/sim/StepTeam.h).
 )";
 
 void runOverhead(int components, int steps, int repeat) {

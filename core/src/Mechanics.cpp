@@ -13,6 +13,7 @@
 namespace fascia::core {
 
 void BaseMechanicalState::resize(size_t n) {
+    waitForLateTasks();  // (a block's late run may still read x: fascia/sim/StepTeam.h)
     m_x0.resize(n, Vec3::Zero());
     m_x = m_x0;
     m_v.assign(n, Vec3::Zero());

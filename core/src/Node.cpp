@@ -1,4 +1,5 @@
 #include "fascia/scene/Node.h"
+#include "fascia/sim/StepTeam.h"
 
 #include <unistd.h>
 
@@ -8,7 +9,9 @@ namespace fascia::core {
 
 Node::Node() { setClassName("Node"); }
 Node::Node(const std::string& name) : Node() { setName(name); }
-Node::~Node() = default;
+// (a block's late run of the step team may still read this scene's states and force fields:
+// fascia/sim/StepTeam.h)
+Node::~Node() { waitForLateTasks(); }
 
 Node* Node::root() {
     Node* n = this;

@@ -2,9 +2,11 @@
 
 #include <atomic>
 #include <chrono>
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -61,6 +63,30 @@ inline void relax() {
 #endif
 }
 
+std::int64_t nowNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// A task's state (the low byte of its slot's word; the phase's tag in the high 32 bits): taken and
+/// running, run again by the caller, claimed by one of its runs. A word with another phase's tag is
+/// a task nobody has taken.
+enum TaskState : std::uint64_t { kRunning = 1, kTakenOver = 2, kClaimed = 3 };
+
+struct alignas(16) TaskSlot {
+    std::atomic<std::uint64_t> word{0};
+    std::atomic<std::int64_t> start{0};  ///< when its first run began (ns)
+};
+
+/// The task the calling thread runs, for claimTask (none outside the team's tasks).
+struct CurrentTask {
+    std::atomic<std::uint64_t>* word = nullptr;
+    std::uint64_t tag = 0;
+    bool claimed = false;
+};
+thread_local CurrentTask t_task;
+
+std::atomic<long> g_takeovers{0};
+
 constexpr int kMaxThreads = 64;
 /// How long an idle worker spins for the next phase before it sleeps (a step of a small mesh
 /// comes every few tenths of a millisecond).
@@ -72,18 +98,26 @@ constexpr auto kSpin = std::chrono::microseconds(2000);
 /// replaced fails on the tag.
 class Team {
 public:
-    void run(TeamJob& job, int threads) {
+    void run(const std::shared_ptr<TeamJob>& held, int threads) {
+        TeamJob& job = *held;
         threads = std::min(threads, kMaxThreads);
         startWorkers(threads - 1);
+        releaseRetired();
         for (int p = 0; p < job.phases(); ++p) {
             const long n = job.tasks(p);
             const int ranges = ownedRanges() ? threads : 1;
             const std::uint64_t tag = open(&job, p, n, threads, ranges);
             work(job, p, n, ranges, 0, tag);
-            while (m_done.load(std::memory_order_acquire) < n) relax();
+            while (m_done.load(std::memory_order_acquire) < n)
+                if (!takeOver(job, p, n, tag)) relax();
             job.between(p);
         }
-        // (the last phase stays published, exhausted: a worker that reads it takes nothing)
+        // (the last phase stays published, exhausted: a worker that reads it takes nothing); a run
+        // that lost its claim may still be inside the job: kept until no worker is in a task
+        if (m_inTask.load(std::memory_order_seq_cst) > 0) {
+            std::lock_guard<std::mutex> lock(m_retiredMutex);
+            m_retiredJobs.push_back(held);
+        }
     }
 
 private:
@@ -102,6 +136,10 @@ private:
         m_threads.store(threads, std::memory_order_relaxed);
         m_ranges.store(ranges, std::memory_order_relaxed);
         m_done.store(0, std::memory_order_relaxed);
+        m_timed.store(0, std::memory_order_relaxed);
+        m_busyNs.store(0, std::memory_order_relaxed);
+        m_lastScan = 0;
+        if (n > m_capacity) growSlots(n);
         const std::uint64_t tag = (e + 2) >> 1;
         for (int r = 0; r < ranges; ++r) m_counters[r].word.store(tag << 32, std::memory_order_relaxed);
         m_epoch.store(e + 2, std::memory_order_seq_cst);  // (seq_cst: against m_sleeping, see sleep)
@@ -133,14 +171,85 @@ private:
 
     /// Thread t runs tasks of the phase until none is left (a worker: clock, its RunClock).
     void work(TeamJob& job, int p, long n, int ranges, int t, std::uint64_t tag, RunClock* clock = nullptr) {
+        TaskSlot* slots = m_slots.load(std::memory_order_acquire);
         for (;;) {
             if (clock) clock->beforeTask();
+            if (clock) m_inTask.fetch_add(1, std::memory_order_seq_cst);
             const long k = take(tag, n, ranges, t);
+            if (k >= 0) {
+                TaskSlot& s = slots[k];
+                const std::int64_t start = nowNs();
+                s.start.store(start, std::memory_order_relaxed);
+                s.word.store(tag << 32 | kRunning, std::memory_order_release);
+                if (runTask(job, p, k, t, s, tag)) {
+                    m_busyNs.fetch_add(nowNs() - start, std::memory_order_relaxed);
+                    m_timed.fetch_add(1, std::memory_order_relaxed);
+                    m_done.fetch_add(1, std::memory_order_release);
+                }
+            }
+            // (a run that lost its claim touches nothing of the job from here on)
+            if (clock) m_inTask.fetch_sub(1, std::memory_order_seq_cst);
             if (k < 0) break;
-            job.run(p, k, t);
-            m_done.fetch_add(1, std::memory_order_release);
         }
     }
+
+    /// Runs task k of phase p on thread t; true when this run's result is the task's (claimTask).
+    static bool runTask(TeamJob& job, int p, long k, int t, TaskSlot& s, std::uint64_t tag) {
+        t_task = CurrentTask{&s.word, tag, false};
+        job.run(p, k, t);
+        const bool mine = t_task.claimed || claimTask();  // (a task that never asked claims here)
+        t_task = CurrentTask{};
+        return mine;
+    }
+
+    /// On the caller, with nothing left to take: runs again a rerunnable task of the phase that has
+    /// run 4 times the phase's mean task time (at least 50 us); see StepTeam.h. False when none is due.
+    bool takeOver(TeamJob& job, int p, long n, std::uint64_t tag) {
+        const std::int64_t now = nowNs();
+        if (now - m_lastScan < 20000) return false;  // (looks every 20 us)
+        m_lastScan = now;
+        const long timed = m_timed.load(std::memory_order_relaxed);
+        if (timed == 0) return false;
+        const std::int64_t limit = std::max<std::int64_t>(4 * m_busyNs.load(std::memory_order_relaxed) / timed, 50000);
+        TaskSlot* slots = m_slots.load(std::memory_order_acquire);
+        for (long k = 0; k < n; ++k) {
+            std::uint64_t w = slots[k].word.load(std::memory_order_acquire);
+            if (w != (tag << 32 | kRunning) || now - slots[k].start.load(std::memory_order_relaxed) < limit || !job.rerunnable(p, k))
+                continue;
+            if (!slots[k].word.compare_exchange_strong(w, tag << 32 | kTakenOver, std::memory_order_acq_rel)) continue;
+            g_takeovers.fetch_add(1, std::memory_order_relaxed);
+            if (runTask(job, p, k, 0, slots[k], tag)) m_done.fetch_add(1, std::memory_order_release);
+            return true;
+        }
+        return false;
+    }
+
+    /// Room for n tasks' slots. The old slots stay allocated: a late run may still claim in them.
+    void growSlots(long n) {
+        long cap = std::max<long>(m_capacity, 1024);
+        while (cap < n) cap *= 2;
+        m_retired.emplace_back(new TaskSlot[size_t(cap)]);
+        m_slots.store(m_retired.back().get(), std::memory_order_release);
+        m_capacity = cap;
+    }
+
+    /// Frees the jobs kept for late runs once no worker is in a task.
+    void releaseRetired() {
+        std::vector<std::shared_ptr<TeamJob>> gone;
+        {
+            std::lock_guard<std::mutex> lock(m_retiredMutex);
+            if (m_retiredJobs.empty() || m_inTask.load(std::memory_order_seq_cst) > 0) return;
+            gone.swap(m_retiredJobs);
+        }
+    }
+
+public:
+    void waitForLate() {
+        while (m_inTask.load(std::memory_order_seq_cst) > 0) std::this_thread::sleep_for(std::chrono::microseconds(50));
+        releaseRetired();
+    }
+
+private:
 
     void startWorkers(int count) {
         // (only the caller of runTeamJob starts workers: the threaded step runs on one thread at a time)
@@ -192,6 +301,15 @@ private:
     std::atomic<long> m_total{0};
     Counter m_counters[kMaxThreads];
     alignas(64) std::atomic<long> m_done{0};
+    alignas(64) std::atomic<long> m_timed{0};        ///< tasks of the phase done by their first run
+    std::atomic<std::int64_t> m_busyNs{0};           ///< their time together
+    alignas(64) std::atomic<int> m_inTask{0};        ///< workers inside work()'s take and task
+    std::int64_t m_lastScan = 0;                     ///< (the caller's)
+    std::atomic<TaskSlot*> m_slots{nullptr};
+    long m_capacity = 0;
+    std::vector<std::unique_ptr<TaskSlot[]>> m_retired;  ///< every slot array (the last is m_slots)
+    std::mutex m_retiredMutex;
+    std::vector<std::shared_ptr<TeamJob>> m_retiredJobs;  ///< jobs a late run may still be inside
     alignas(64) std::atomic<int> m_sleeping{0};
     std::mutex m_mutex;
     std::condition_variable m_wake;
@@ -206,7 +324,8 @@ Team& team() {
 
 } // namespace
 
-void runTeamJob(TeamJob& job, int threads) {
+void runTeamJob(const std::shared_ptr<TeamJob>& held, int threads) {
+    TeamJob& job = *held;
     if (threads <= 1) {
         for (int p = 0; p < job.phases(); ++p) {
             const long n = job.tasks(p);
@@ -215,8 +334,24 @@ void runTeamJob(TeamJob& job, int threads) {
         }
         return;
     }
-    team().run(job, threads);
+    team().run(held, threads);
 }
+
+bool claimTask() {
+    CurrentTask& c = t_task;
+    if (!c.word || c.claimed) return true;
+    std::uint64_t w = c.word->load(std::memory_order_acquire);
+    for (;;) {
+        if ((w >> 32) != c.tag || (w & 0xff) == kClaimed) return false;
+        if (c.word->compare_exchange_weak(w, c.tag << 32 | kClaimed, std::memory_order_acq_rel, std::memory_order_acquire)) break;
+    }
+    c.claimed = true;
+    return true;
+}
+
+void waitForLateTasks() { team().waitForLate(); }
+
+long teamTakeovers() { return g_takeovers.load(std::memory_order_relaxed); }
 
 void setOwnedRanges(bool on) { g_owned.store(on); }
 bool ownedRanges() { return g_owned.load(std::memory_order_relaxed); }

@@ -17,7 +17,8 @@ size_t BlockBuffers::addBlock(int lo, int hi) {
     return m_lo.size() - 1;
 }
 
-void BlockBuffers::finish(size_t nodeCount, std::vector<int> nodeOf) {
+void BlockBuffers::finish(size_t nodeCount, std::vector<int> nodeOf, Fill how) {
+    m_clear = how == Fill::Add;
     m_nodes = nodeCount;
     m_nodeOf = std::move(nodeOf);
     m_buf.assign(m_size, 0.0);
@@ -62,7 +63,7 @@ void BlockBuffers::sumRange(double* fp, long lo, long hi) {
                 a0 += r[0];
                 a1 += r[1];
                 a2 += r[2];
-                r[0] = r[1] = r[2] = r[3] = 0.0;  // cleared for the next evaluation
+                if (m_clear) r[0] = r[1] = r[2] = r[3] = 0.0;  // cleared for the next evaluation
             }
             double* __restrict q = fp + 3 * size_t(i);
             q[0] += a0;
@@ -87,7 +88,7 @@ void BlockBuffers::sumRange(double* fp, long lo, long hi) {
             for (size_t k = 0; k < rows; ++k)
                 for (size_t c = 0; c < 3; ++c) dst[3 * k + c] += src[4 * k + c];
             // cleared while in the cache, for the next evaluation
-            std::fill(src, src + 4 * rows, 0.0);
+            if (m_clear) std::fill(src, src + 4 * rows, 0.0);
         }
         double* __restrict out = fp + 3 * static_cast<size_t>(a0);
         for (size_t k = 0; k < 3 * static_cast<size_t>(z0 - a0 + 1); ++k) out[k] += sum[k];
@@ -96,9 +97,38 @@ void BlockBuffers::sumRange(double* fp, long lo, long hi) {
 
 core::LayoutBytes BlockBuffers::stepBytes() const {
     core::LayoutBytes b;
-    b.buffers = 4 * m_buf.size() * sizeof(double);
+    b.buffers = (m_clear ? 4 : 2) * m_buf.size() * sizeof(double);
     b.nodeRows = 2 * 3 * m_nodes * sizeof(double) + m_nodeOf.size() * sizeof(int);
     return b;
+}
+
+void BlockScratch::reserve(size_t positionRows, size_t forceRows) {
+    m_xRows = positionRows;
+    m_fRows = forceRows;
+    m_rows.clear();
+    m_rows.resize(kThreads);
+}
+
+BlockScratch::Rows& BlockScratch::rowsOf(int t) {
+    std::unique_ptr<Rows>& r = m_rows.at(size_t(t));
+    if (!r) {
+        r = std::make_unique<Rows>();
+        r->x.assign(4 * m_xRows, 0.0);
+        r->f.assign(4 * m_fRows, 0.0);
+    }
+    return *r;
+}
+
+double* BlockScratch::forces(int t, size_t rows) {
+    double* f = rowsOf(t).f.data();
+    std::fill(f, f + 4 * rows, 0.0);
+    return f;
+}
+
+size_t CompactBlockBuffers::maxRows() const {
+    size_t m = 0;
+    for (size_t b = 0; b < blockCount(); ++b) m = std::max(m, rowCount(b));
+    return m;
 }
 
 size_t CompactBlockBuffers::addBlock(std::initializer_list<Nodes> parts) {
@@ -127,7 +157,6 @@ void CompactBlockBuffers::finish(std::vector<int> nodeOf, Source source) {
     m_directGather = source == Source::Auto && n * 3 * sizeof(double) <= (size_t(1) << 19);
     m_ownCopy = source == Source::Auto && !m_directGather;
     m_xin.assign(m_ownCopy ? 4 * n : 0, 0.0);
-    m_xrow.assign(4 * rows, 0.0);
     m_buf.assign(4 * rows, 0.0);
     // per node, its rows; rows ascend with the block index, so each list is in block order
     m_nodeRowStart.assign(n + 1, 0);
@@ -196,10 +225,9 @@ core::LayoutBytes CompactBlockBuffers::stepBytes() const {
     else if (m_ownCopy) b.nodeRows = n * I + 3 * n * D + 2 * m_xin.size() * D;
     // the sum: the node's row lists, nodeOf, f read and written
     b.nodeRows += m_nodeRowStart.size() * I + n * I + 2 * 3 * n * D;
-    // loadBlock: a row list (rowNode or rowInternal), the row positions written, the force rows
-    // cleared; the kernel: positions read, forces read and written; the sum: rows and lists read
-    b.buffers = (m_directGather ? m_rowNode.size() : m_rowInternal.size()) * I + 2 * m_xrow.size() * D +
-                4 * m_buf.size() * D + m_nodeRows.size() * I;
+    // loadRows: a row list (rowNode or rowInternal); commit: the force rows written; the sum: rows
+    // and lists read (the thread's rows, positions and forces, stay in its cache)
+    b.buffers = (m_directGather ? m_rowNode.size() : m_rowInternal.size()) * I + 2 * m_buf.size() * D + m_nodeRows.size() * I;
     return b;
 }
 

@@ -33,7 +33,7 @@ namespace {
 
 // T: the element scalar type, double or float (precision="mixed")
 template <class T, class Law, bool Forces, bool Visco>
-double runLaw(HEMLData& d, size_t b, const double* x) {
+double runLaw(HEMLData& d, size_t b, const BlockRun& x) {
     const BaseMaterial* m = d.materials[size_t(d.blocks[b].material)];
     if constexpr (std::is_same_v<Law, elements::GenericLaw>)
         return runBlock<T, GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
@@ -42,7 +42,7 @@ double runLaw(HEMLData& d, size_t b, const double* x) {
 }
 
 template <bool Forces, bool Visco>
-double runSpring(HEMLData& d, size_t b, const double* x) {
+double runSpring(HEMLData& d, size_t b, const BlockRun& x) {
     return d.mixed ? runBlock<float, SpringEval, Forces, Visco>(d, b, SpringEval{}, x)
                    : runBlock<double, SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
 }
@@ -51,7 +51,7 @@ double runSpring(HEMLData& d, size_t b, const double* x) {
 
 /// The element loops of one material: with forces and viscosity, with forces, energy alone.
 struct HEMLForceField::BlockFns {
-    using Fn = double (*)(HEMLData&, size_t, const double*);
+    using Fn = double (*)(HEMLData&, size_t, const BlockRun&);
     Fn forcesVisco = nullptr, forces = nullptr, energy = nullptr;
     bool inlined = true;
 };
@@ -71,7 +71,7 @@ HEMLForceField::BlockFns loopsFor(const BaseMaterial* m) {
 
 // one block with the loop of its material (or the mass-spring loop)
 template <bool Forces, bool Visco>
-double runOne(HEMLData& d, size_t b, const std::vector<HEMLForceField::BlockFns>& fns, const double* x) {
+double runOne(HEMLData& d, size_t b, const std::vector<HEMLForceField::BlockFns>& fns, const BlockRun& x) {
     if (d.massSpring) return runSpring<Forces, Visco>(d, b, x);
     const HEMLForceField::BlockFns& f = fns[size_t(d.blocks[b].material)];
     return (Forces ? (Visco ? f.forcesVisco : f.forces) : f.energy)(d, b, x);
@@ -80,7 +80,7 @@ double runOne(HEMLData& d, size_t b, const std::vector<HEMLForceField::BlockFns>
 } // namespace
 
 HEMLForceField::HEMLForceField() = default;
-HEMLForceField::~HEMLForceField() = default;
+HEMLForceField::~HEMLForceField() { core::waitForLateTasks(); }  // (a block's late run may still read m_data)
 
 // ---------------------------------------------------------------------------------------------
 // set-up
@@ -99,6 +99,7 @@ std::vector<core::Component*> HEMLForceField::dependencies() const {
 }
 
 void HEMLForceField::init() {
+    core::waitForLateTasks();
     m_data = std::make_unique<HEMLData>();
     HEMLData& d = *m_data;
     d.J0 = m_J0.get();
@@ -173,6 +174,7 @@ void buildNodeRows(HEMLData& d) {
                          {d.node[2].data() + b.begin, count}, {d.node[3].data() + b.begin, count}});
     }
     d.rows.finish(d.nodeOf);
+    d.scratch.reserve(d.rows.maxRows(), d.rows.maxRows());
     d.blockEnergy.assign(d.blocks.size(), 0.0);
 }
 
@@ -439,11 +441,19 @@ void HEMLForceField::prepareRange(long lo, long hi) { m_data->rows.positionsRang
 
 long HEMLForceField::forceBlocks() const { return static_cast<long>(m_data->blocks.size()); }
 
-void HEMLForceField::runForceBlock(long bl) {
+bool HEMLForceField::rerunnableBlocks() const { return m_data->nTerms == 0; }
+
+void HEMLForceField::runForceBlock(long bl, int thread) {
+    // the forces into the thread's own rows, the buffer and the energy written only by the run that
+    // claims the block (a block taken over runs twice: core/StepTeam.h); the viscous states are
+    // written in place (Ycur), so viscous blocks are not rerunnable
     HEMLData& d = *m_data;
     const size_t b = static_cast<size_t>(bl);
-    const double* xi = d.rows.positionsBase(m_evalX);
-    d.blockEnergy[b] = d.nTerms > 0 ? runOne<true, true>(d, b, m_fns, xi) : runOne<true, false>(d, b, m_fns, xi);
+    const BlockRun run{d.rows.positionsBase(m_evalX), d.scratch.positions(thread), d.scratch.forces(thread, d.rows.rowCount(b))};
+    const double energy = d.nTerms > 0 ? runOne<true, true>(d, b, m_fns, run) : runOne<true, false>(d, b, m_fns, run);
+    if (!core::claimTask()) return;  // another run of the block came first
+    d.rows.commit(b, run.forces);
+    d.blockEnergy[b] = energy;
 }
 
 void HEMLForceField::sumForceRange(double* f, long lo, long hi) { m_data->rows.sumRange(f, lo, hi); }
@@ -455,9 +465,11 @@ double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) c
     const size_t nb = d.blocks.size();
 #pragma omp parallel if (nb > 1)
     {
-        const double* xi = d.rows.positionsIn(x);
+        // (the thread's own position rows: the step team's may still be in use by a late run)
+        simd::DVec rows(4 * d.rows.maxRows());
+        const BlockRun run{d.rows.positionsIn(x), rows.data(), nullptr};
 #pragma omp for schedule(dynamic, 1)
-        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, b, m_fns, xi);
+        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, b, m_fns, run);
     }
     double E = 0.0;
     for (double e : d.blockEnergy) E += e;

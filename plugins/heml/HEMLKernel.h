@@ -106,6 +106,7 @@ struct HEMLData {
 
     /// the node rows of the blocks (compact rows, 4 doubles each) and their ordered sum
     elements::CompactBlockBuffers rows;
+    elements::BlockScratch scratch;  ///< each thread's rows for a block's run (HEMLForceField::runForceBlock)
     std::vector<double> blockEnergy;
 
     // viscoelasticity (eq. (18)-(20)): per term and link coefficient (6), one value per slot
@@ -368,18 +369,26 @@ FASCIA_INLINE const NodalRows& forcesInDouble(const Chunk<float>& c, NodalRows& 
     return tmp;
 }
 
-/// Runs block bi at positions x (HEMLData::rows.positionsIn's result): forces into the block's node
-/// buffer (when Forces) and its energy (summed in double), the element math in T.
-/// Visco applies eq. (18)-(20) to the generalised forces (see HEMLForceField.h).
+/// Where a block's run reads and writes: the positions x (HEMLData::rows.positionsIn's result), and
+/// the thread's own rows (elements::BlockScratch) for the block's positions and, cleared, its forces.
+struct BlockRun {
+    const double* x = nullptr;
+    double* rows = nullptr;
+    double* forces = nullptr;  ///< (null for the energy alone)
+};
+
+/// Runs block bi: its positions into run.rows, forces into run.forces (when Forces) and its energy
+/// (summed in double), the element math in T. Visco applies eq. (18)-(20) to the generalised forces
+/// (see HEMLForceField.h).
 template <class T, class Eval, bool Forces, bool Visco>
-double runBlock(HEMLData& d, size_t bi, const Eval& eval, const double* x) {
+double runBlock(HEMLData& d, size_t bi, const Eval& eval, const BlockRun& run) {
     Chunk<T> c;
     alignas(64) NodalRows fd;  // (float chunks: their nodal forces in double)
     double energy = 0.0;
     const Block& b = d.blocks[bi];
-    d.rows.loadBlock<Forces>(bi, x);
-    const double* xin = d.rows.positions(bi);
-    double* buf = d.rows.buffer(bi);
+    d.rows.loadRows(bi, run.x, run.rows);
+    const double* xin = run.rows;
+    double* buf = run.forces;
     const unsigned uses = eval.uses();
     const bool useI4 = (uses & materials::BaseMaterial::UsesI4) != 0;
     const bool useI6 = (uses & materials::BaseMaterial::UsesI6) != 0;

@@ -136,6 +136,9 @@ struct TLEDForceField::Impl {
     bool compact = false;
     elements::BlockBuffers buffers;
     elements::CompactBlockBuffers rows;
+    /// each thread's rows for a block's run (u rows and force rows), committed to the block's
+    /// buffer when the run claims its result (TLEDForceField::runForceBlock)
+    elements::BlockScratch scratch;
     std::vector<ViscoSet> visco;
     double J0 = 0.4;
     size_t nodeCount = 0;     ///< 1 + largest node index

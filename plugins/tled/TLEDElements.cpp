@@ -271,12 +271,15 @@ void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice
     for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += static_cast<size_t>(im.buffers.hi(b) - im.buffers.lo(b) + 1);
     im.compact = choice == "compact" || (choice == "auto" && 2 * rangeRows > 3 * compactRows(im));
     if (!im.compact) {
-        im.buffers.finish(im.nodeCount, im.nodeOf);
+        im.buffers.finish(im.nodeCount, im.nodeOf, elements::BlockBuffers::Fill::Commit);
         if (im.buffers.rows() > 16 * im.nodeCount && im.blocks.size() > 16)
             ff.warn("the element blocks span " + std::to_string(im.buffers.rows() / im.nodeCount) +
                     " times the node count in their force buffers, in the node order used (the file's, or a reverse "
                     "Cuthill-McKee one when that is more than twice as compact): speed and memory suffer; "
                     "nodeBuffers=\"compact\" does not grow with the ranges");
+        size_t widest = 0;
+        for (size_t b = 0; b < im.buffers.blockCount(); ++b) widest = std::max(widest, size_t(im.buffers.hi(b) - im.buffers.lo(b) + 1));
+        im.scratch.reserve(0, widest);
         return;
     }
     im.buffers = elements::BlockBuffers{};
@@ -287,6 +290,7 @@ void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice
         std::iota(nodeOf.begin(), nodeOf.end(), 0);
     }
     im.rows.finish(std::move(nodeOf), elements::CompactBlockBuffers::Source::Internal);
+    im.scratch.reserve(im.rows.maxRows(), im.rows.maxRows());
 }
 
 } // namespace

@@ -28,7 +28,7 @@ core::BaseTopology* findMeshSource(const core::Component& self) {
 } // namespace
 
 TLEDForceField::TLEDForceField() : m_impl(std::make_unique<Impl>()) {}
-TLEDForceField::~TLEDForceField() = default;
+TLEDForceField::~TLEDForceField() { core::waitForLateTasks(); }  // (a block's late run may still read m_impl)
 size_t TLEDForceField::blockCount() const { return m_impl->blocks.size(); }
 
 // ------------------------------------------------------------------------------------------------
@@ -47,6 +47,7 @@ std::vector<core::Component*> TLEDForceField::dependencies() const {
 }
 
 void TLEDForceField::init() {
+    core::waitForLateTasks();
     m_impl = std::make_unique<Impl>();
     Impl& im = *m_impl;
     im.J0 = m_J0.get();
@@ -257,19 +258,27 @@ void TLEDForceField::prepareRange(long lo, long hi) {
 
 long TLEDForceField::forceBlocks() const { return static_cast<long>(m_impl->blocks.size()); }
 
-void TLEDForceField::runForceBlock(long bi) {
+bool TLEDForceField::rerunnableBlocks() const { return m_impl->visco.empty(); }
+
+void TLEDForceField::runForceBlock(long bi, int thread) {
     Impl& im = *m_impl;
     KernelIO io;
     const size_t b = static_cast<size_t>(bi);
+    // the forces into the thread's own rows, the buffer written only by the run that claims the
+    // block (a block taken over runs twice: core/StepTeam.h); the viscous states are written in
+    // place (Ynew), so viscous blocks are not rerunnable
+    size_t rows = 0;
     if (im.compact) {
-        im.rows.loadBlock<true>(b, im.u.data());  // the block's rows of u, its force rows cleared
-        io.u = im.rows.positions(b);
-        io.buf = im.rows.buffer(b);
+        rows = im.rows.rowCount(b);
+        double* u = im.scratch.positions(thread);
+        im.rows.loadRows(b, im.u.data(), u);  // the block's rows of u
+        io.u = u;
     } else {
+        rows = size_t(im.buffers.hi(b) - im.buffers.lo(b) + 1);
         io.u = im.u.data();
-        io.buf = im.buffers.buffer(b);  // zero: the sum cleared it
         io.bufLo = im.buffers.lo(b);
     }
+    io.buf = im.scratch.forces(thread, rows);
     for (size_t v = 0; v < im.visco.size(); ++v) {
         io.Yhist[v] = im.visco[v].Yprev.data();
         io.Ynew[v] = im.visco[v].Ycur.data();
@@ -277,6 +286,9 @@ void TLEDForceField::runForceBlock(long bi) {
     io.streamY = im.streamStates;
     runBlock(im, im.blocks[b], io);
     if (io.streamY) simd::streamFence();
+    if (!core::claimTask()) return;  // another run of the block came first
+    if (im.compact) im.rows.commit(b, io.buf);
+    else im.buffers.commit(b, io.buf);
 }
 
 void TLEDForceField::sumForceRange(double* f, long lo, long hi) {

@@ -170,6 +170,22 @@ TEST_CASE("the block buffers add each node's rows in block order and clear them"
     CHECK(f[3 * 0 + 1] == 1.0 + (20 + 3 + 0.1));  // internal 3 only in block 1
     for (size_t b = 0; b < 2; ++b)
         for (size_t i = 0; i < 4 * size_t(bb.hi(b) - bb.lo(b) + 1); ++i) CHECK(bb.buffer(b)[i] == 0.0);
+    const double addBytes = double(bb.stepBytes().buffers);
+
+    // committed buffers: each block's rows written whole, not cleared by the sum
+    BlockBuffers cb;
+    cb.addBlock(0, 2);
+    cb.addBlock(1, 3);
+    cb.finish(4, {3, 2, 1, 0}, BlockBuffers::Fill::Commit);
+    const std::vector<double> rows(12, 0.5);
+    cb.commit(0, rows.data());
+    cb.commit(1, rows.data());
+    std::fill(f.begin(), f.end(), 0.0);
+    cb.sumInto(f.data());
+    CHECK(f[3 * 2 + 0] == 1.0);  // in both blocks
+    CHECK(f[3 * 3 + 0] == 0.5);
+    CHECK(cb.buffer(1)[0] == 0.5);
+    CHECK(double(cb.stepBytes().buffers) == addBytes / 2);
 }
 
 TEST_CASE("The compact block buffers rewrite each block's nodes to its rows and sum every node's rows in block order",
@@ -194,32 +210,40 @@ TEST_CASE("The compact block buffers rewrite each block's nodes to its rows and 
     for (size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * double(i);
     const double* xi = cb.positionsIn(x.data());
     CHECK(xi == x.data());
+    CHECK(cb.maxRows() == 3);
+    BlockScratch scratch;
+    scratch.reserve(cb.maxRows(), cb.maxRows());
     for (size_t b = 0; b < 3; ++b) {
-        cb.loadBlock<true>(b, xi);
-        for (size_t r = 0; r < cb.rowEnd(b) - cb.rowBegin(b); ++r) {
+        double* rows = scratch.positions(1);
+        cb.loadRows(b, xi, rows);
+        for (size_t r = 0; r < cb.rowCount(b); ++r) {
             const int state = 4 - cb.rowInternal()[cb.rowBegin(b) + r];
-            for (int c = 0; c < 3; ++c) CHECK(cb.positions(b)[4 * r + c] == x[3 * size_t(state) + size_t(c)]);
-            CHECK(cb.positions(b)[4 * r + 3] == 0.0);
+            for (int c = 0; c < 3; ++c) CHECK(rows[4 * r + c] == x[3 * size_t(state) + size_t(c)]);
+            CHECK(rows[4 * r + 3] == 0.0);
         }
     }
     // internal node 4 (state node 0) has a row in each block: 1, 1e16, -1e16 sum to 0 in block
-    // order ((1 + 1e16) rounds to 1e16), to 1 in the reverse order
-    cb.buffer(0)[4 * 2 + 0] = 1.0;
-    cb.buffer(1)[4 * 1 + 0] = 1e16;
-    cb.buffer(2)[4 * 0 + 0] = -1e16;
-    cb.buffer(1)[4 * 1 + 1] = 2.0;
-    cb.buffer(0)[4 * 0 + 2] = 3.0;  // internal node 1 (state node 3), block 0 only
+    // order ((1 + 1e16) rounds to 1e16), to 1 in the reverse order; each block's forces are
+    // committed from a thread's rows, cleared for each block
+    const auto commit = [&](size_t b, std::vector<std::pair<size_t, double>> values) {
+        double* f = scratch.forces(2, cb.rowCount(b));
+        for (auto [i, v] : values) f[i] = v;
+        cb.commit(b, f);
+    };
+    commit(0, {{4 * 2 + 0, 1.0}, {4 * 0 + 2, 3.0}});  // and internal node 1 (state node 3), block 0 only
+    commit(1, {{4 * 1 + 0, 1e16}, {4 * 1 + 1, 2.0}});
+    commit(2, {{4 * 0 + 0, -1e16}});
     std::vector<double> f(15, 1.0);
     cb.sumInto(f.data());
     CHECK(f[0] == 1.0);
     CHECK(f[1] == 1.0 + 2.0);
     CHECK(f[3 * 3 + 2] == 1.0 + 3.0);
     CHECK(f[3 * 2 + 0] == 1.0);  // internal node 2 is in no block
-    // loadBlock<true> clears a block's buffer, loadBlock<false> leaves it
-    cb.loadBlock<false>(1, xi);
+    // a commit overwrites the block's buffer (nothing to clear between evaluations)
     CHECK(cb.buffer(1)[4] == 1e16);
-    cb.loadBlock<true>(1, xi);
-    for (size_t i = 0; i < 8; ++i) CHECK(cb.buffer(1)[i] == 0.0);
+    commit(1, {{0, 5.0}});
+    CHECK(cb.buffer(1)[0] == 5.0);
+    for (size_t i = 1; i < 8; ++i) CHECK(cb.buffer(1)[i] == 0.0);
 }
 
 TEST_CASE("The compact block buffers copy the positions into internal order on large meshes", "[CompactBlockBuffers]") {
@@ -238,11 +262,12 @@ TEST_CASE("The compact block buffers copy the positions into internal order on l
     REQUIRE(xi != x.data());
     for (int q : {0, 7, 15000, n - 1})
         for (int c = 0; c < 3; ++c) CHECK(xi[4 * q + c] == x[3 * size_t(n - 1 - q) + size_t(c)]);
-    cb.loadBlock<true>(1, xi);
+    std::vector<double> rows(4 * cb.maxRows());
+    cb.loadRows(1, xi, rows.data());
     // block 1's rows: internal nodes 7 and 15000
     for (int c = 0; c < 3; ++c) {
-        CHECK(cb.positions(1)[c] == x[3 * size_t(n - 1 - 7) + size_t(c)]);
-        CHECK(cb.positions(1)[4 + c] == x[3 * size_t(n - 1 - 15000) + size_t(c)]);
+        CHECK(rows[size_t(c)] == x[3 * size_t(n - 1 - 7) + size_t(c)]);
+        CHECK(rows[size_t(4 + c)] == x[3 * size_t(n - 1 - 15000) + size_t(c)]);
     }
 }
 

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -47,8 +48,13 @@ public:
     virtual void prepareRange(long lo, long hi) {}
     /// Its element blocks (fixed by the mesh, never by the thread count).
     virtual long forceBlocks() const = 0;
-    /// Block b into its own node buffer, after every prepare range. Any thread; must not throw.
-    virtual void runForceBlock(long b) = 0;
+    /// Block b into its own node buffer, after every prepare range, on the step team's thread
+    /// `thread` (0 .. 63, for per-thread scratch). Any thread; must not throw.
+    virtual void runForceBlock(long b, int thread) = 0;
+    /// Whether a block may run twice at once (the step team's takeover of a block whose thread lost
+    /// its core, fascia/sim/StepTeam.h): true when runForceBlock computes into its thread's scratch
+    /// and writes its buffer only when core::claimTask() says so. Default false.
+    virtual bool rerunnableBlocks() const { return false; }
     /// f (3 doubles per state node) += its forces at the state nodes [lo, hi), summed per node in block
     /// order, after every block; clears what the next evaluation needs cleared. Any thread, disjoint ranges.
     virtual void sumForceRange(double* f, long lo, long hi) = 0;
@@ -127,8 +133,12 @@ struct ForceStages {
         }
         const size_t f = ownerOf(blocks, k);
         if (TaskHook h = taskHook()) h(thread, k);
-        ffs[f]->runForceBlock(k - blocks[f]);
+        ffs[f]->runForceBlock(k - blocks[f], thread);
+        // (nothing of this job may be touched from here: a run that lost its claim may come back
+        // after the job is gone, StepTeam.h)
     }
+    /// Whether task k of phase 1 may run twice (TeamJob::rerunnable).
+    bool rerunnable(long k) const { return !(haveAlone && k == 0) && ffs[ownerOf(blocks, k)]->rerunnableBlocks(); }
 };
 
 /// addForce's stages as a team job: the node passes, the blocks, the sum into f over nNodes nodes.
@@ -144,6 +154,7 @@ public:
         else if (p == 1) m_stages.block(k, thread, m_error, [] {});
         else m_stages.ffs[0]->sumForceRange(m_f, k * kNodeChunk, std::min(m_n, (k + 1) * kNodeChunk));
     }
+    bool rerunnable(int p, long k) const override { return p == 1 && m_stages.rerunnable(k); }
 
 private:
     ForceStages m_stages;
@@ -156,8 +167,7 @@ private:
 /// addForce of a ThreadedForces force field, after its beginForces: its stages as one job of the step
 /// team (StepTeam.h) on the OpenMP threads (omp_get_max_threads()). Bitwise the same for any thread count.
 inline void runThreadedForces(ThreadedForces& ff, double* f, long nNodes) {
-    detail::ForcesJob job(ff, f, nNodes);
-    runTeamJob(job, ff.forceBlocks() > 1 ? omp_get_max_threads() : 1);
+    runTeamJob(std::make_shared<detail::ForcesJob>(ff, f, nNodes), ff.forceBlocks() > 1 ? omp_get_max_threads() : 1);
 }
 
 namespace detail {
@@ -197,6 +207,7 @@ public:
     void between(int p) override {
         if (p == 2 && !m_g.constraints.empty() && !m_error) runAlone(m_error, [&] { m_g.applyConstraints(); });
     }
+    bool rerunnable(int p, long k) const override { return p == 1 && m_stages.rerunnable(k); }
     std::exception_ptr& error() { return m_error; }
 
 private:
@@ -247,7 +258,8 @@ bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     g.chunkSums.assign(2 * size_t(chunks), 0.0);
     long blocks = 0;
     for (ThreadedForces* ff : ffs) blocks += ff->forceBlocks();
-    detail::StepJob<std::remove_reference_t<Update>> job(g, t, std::move(ffs), std::move(others), update);
+    // (shared: the team keeps it while a block's late run may be inside it, StepTeam.h)
+    auto job = std::make_shared<detail::StepJob<std::remove_reference_t<Update>>>(g, t, std::move(ffs), std::move(others), update);
     // the team: all threads, or one when the measured steps say so (a loaded core: TeamChoice)
     const bool parallel = blocks > 1 || n > kParallelNodes;
     const bool adapt = parallel && adaptiveTeamEnabled() && omp_get_max_threads() > 1;
@@ -255,7 +267,7 @@ bool stepThreaded(MechanicalGroup& g, double t, Update&& update) {
     const double start = adapt ? omp_get_wtime() : 0.0;
     runTeamJob(job, parallel && team == 1 ? omp_get_max_threads() : 1);
     if (adapt) g.team.record(team, omp_get_wtime() - start);
-    if (job.error()) std::rethrow_exception(job.error());
+    if (job->error()) std::rethrow_exception(job->error());
     return true;
 }
 

@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <initializer_list>
+#include <memory>
 #include <vector>
 
 namespace fascia::elements {
@@ -39,22 +40,30 @@ class BlockBuffers {
 public:
     /// Adds a block whose elements use nodes lo..hi (internal numbering); returns its index.
     size_t addBlock(int lo, int hi);
+    /// How the blocks fill their buffers: adding into them in place (the sum clears them for the
+    /// next evaluation), or each block's rows written whole by commit (nothing to clear).
+    enum class Fill { Add, Commit };
     /// Allocates the buffers (zeroed). nodeOf: internal node -> state node (empty: the same).
-    void finish(size_t nodeCount, std::vector<int> nodeOf = {});
+    void finish(size_t nodeCount, std::vector<int> nodeOf = {}, Fill fill = Fill::Add);
     size_t blockCount() const { return m_lo.size(); }
     int lo(size_t b) const { return m_lo[b]; }
     int hi(size_t b) const { return m_hi[b]; }
     /// The node buffer of block b: row r (4 doubles) is internal node lo(b) + r.
     double* buffer(size_t b) { return m_buf.data() + m_offset[b]; }
+    /// Block b's forces (hi(b) - lo(b) + 1 rows of 4 doubles) become its buffer (BlockScratch).
+    void commit(size_t b, const double* forces) {
+        std::copy(forces, forces + 4 * static_cast<size_t>(m_hi[b] - m_lo[b] + 1), buffer(b));
+    }
     /// Node rows of all buffers together.
     size_t rows() const { return m_buf.size() / 4; }
     const std::vector<int>& nodeOf() const { return m_nodeOf; }
-    /// f (3 doubles per state node) += the buffers, summed per node in block order; the buffers are
-    /// cleared for the next evaluation. An orphaned "omp for" over tiles of nodes: call it inside the
-    /// parallel region of the element loop (or outside any, serially).
+    /// f (3 doubles per state node) += the buffers, summed per node in block order; with Fill::Add
+    /// the buffers are cleared for the next evaluation. An orphaned "omp for" over tiles of nodes:
+    /// call it inside the parallel region of the element loop (or outside any, serially).
     void sumInto(double* f);
-    /// What one evaluation moves through the buffers and f (core::LayoutBytes): the scatter reads
-    /// and writes every row, the sum reads and clears it (4 passes); f is read and written, nodeOf
+    /// What one evaluation moves through the buffers and f (core::LayoutBytes): with Fill::Add the
+    /// scatter reads and writes every row, the sum reads and clears it (4 passes), with
+    /// Fill::Commit the commit writes it and the sum reads it (2); f is read and written, nodeOf
     /// read. No element data (the force field adds its own).
     core::LayoutBytes stepBytes() const;
     /// The same for the state nodes [lo, hi) only (any thread, disjoint ranges: the threaded step's
@@ -72,6 +81,32 @@ private:
     std::vector<size_t> m_nodeRowStart;  ///< renumbered: the rows of internal node p in block order are
     std::vector<size_t> m_nodeRows;      ///< m_nodeRows[m_nodeRowStart[p] .. [p + 1]] (offsets in doubles)
     size_t m_nodes = 0, m_size = 0;
+    bool m_clear = true;  ///< Fill::Add: the sum clears what it read
+};
+
+/// Per-thread rows for one run of a block: the positions it gathers from (compact rows) and the
+/// forces it adds into. A block writes nothing shared until it has claimed its result
+/// (core::claimTask), and then copies its force rows into its buffer (commit), so two runs of one
+/// block (the step team's takeover, fascia/sim/StepTeam.h) never write the same memory. Thread t's
+/// rows are allocated by thread t on first use, at the sizes given to reserve; the positions also
+/// stay in the thread's cache instead of a shared array.
+class BlockScratch {
+public:
+    static constexpr int kThreads = 64;  ///< thread numbers 0 .. 63 (the step team's most)
+    /// At init, before any run: the most position rows and force rows one block needs.
+    void reserve(size_t positionRows, size_t forceRows);
+    /// Thread t's position rows (4 doubles each).
+    double* positions(int t) { return rowsOf(t).x.data(); }
+    /// Thread t's force rows, the first `rows` of them cleared.
+    double* forces(int t, size_t rows);
+
+private:
+    struct Rows {
+        simd::DVec x, f;
+    };
+    Rows& rowsOf(int t);
+    std::vector<std::unique_ptr<Rows>> m_rows;
+    size_t m_xRows = 0, m_fRows = 0;
 };
 
 /// Compact rows (see the top of this file): a sibling of BlockBuffers rather than a second layout
@@ -87,8 +122,9 @@ private:
 ///   {
 ///     const double* xi = rows.positionsIn(x);                 // orphaned omp for (large meshes)
 ///     #pragma omp for schedule(dynamic, 1)
-///     for each block b: rows.loadBlock<true>(b, xi); gather from rows.positions(b) at the
-///                       rewritten rows, scatter forces into rows.buffer(b)
+///     for each block b: rows.loadRows(b, xi, scratch.positions(t)); gather from them at the
+///                       rewritten rows, scatter forces into scratch.forces(t, rows.rowCount(b)),
+///                       rows.commit(b, those forces)
 ///     rows.sumInto(f);                                        // orphaned omp for
 ///   }
 class CompactBlockBuffers {
@@ -117,6 +153,9 @@ public:
     size_t blockCount() const { return m_rowStart.size() - 1; }
     size_t rowBegin(size_t b) const { return m_rowStart[b]; }
     size_t rowEnd(size_t b) const { return m_rowStart[b + 1]; }
+    size_t rowCount(size_t b) const { return m_rowStart[b + 1] - m_rowStart[b]; }
+    /// The most rows of one block.
+    size_t maxRows() const;
     /// Rows of all blocks together.
     size_t rows() const { return m_rowInternal.size(); }
     /// The internal node of each row.
@@ -129,26 +168,23 @@ public:
     /// order (4 doubles per node). An orphaned
     /// "omp for": call it inside the parallel region of the element loop (or outside any).
     const double* positionsIn(const double* x);
-    /// Copies block b's node positions into its rows from xi (positionsIn's result) and, when
-    /// ClearForces, clears its force buffer. Inline: it runs per block, inside the element loop.
-    template <bool ClearForces>
-    FASCIA_INLINE void loadBlock(size_t b, const double* xi);
-    /// Block b's node values from xi (as loadBlock) into out, 4 doubles a row, rowEnd(b) - rowBegin(b)
-    /// rows: the rows of a caller's own (an output computed beside the force buffers).
+    /// Block b's node values from xi (positionsIn's result, or the caller's rows) into out, 4
+    /// doubles a row, rowCount(b) rows (a BlockScratch's positions). Inline: it runs per block,
+    /// inside the element loop.
     FASCIA_INLINE void loadRows(size_t b, const double* xi, double* out) const;
-    /// Block b's node positions, row r at 4 r (valid after loadBlock).
-    const double* positions(size_t b) const { return m_xrow.data() + 4 * m_rowStart[b]; }
     /// Block b's force buffer, row r at 4 r.
     double* buffer(size_t b) { return m_buf.data() + 4 * m_rowStart[b]; }
     const double* buffer(size_t b) const { return m_buf.data() + 4 * m_rowStart[b]; }
-    /// f (3 doubles per state node) += the buffers, each node's rows summed in block order (the
-    /// buffers are not cleared: loadBlock<true> does that). An orphaned "omp for", as positionsIn.
+    /// Block b's forces (rowCount(b) rows of 4 doubles) become its buffer.
+    void commit(size_t b, const double* forces) { std::copy(forces, forces + 4 * rowCount(b), buffer(b)); }
+    /// f (3 doubles per state node) += the buffers, each node's rows summed in block order (commit
+    /// overwrites a block's buffer: nothing to clear). An orphaned "omp for", as positionsIn.
     void sumInto(double* f) const;
     /// What one evaluation moves through the rows and f (core::LayoutBytes): positionsIn reads x
-    /// and writes the internal copy (above the direct-gather size), loadBlock reads its row lists,
-    /// the positions (once per node) and writes the row positions and clears the force rows, the
-    /// kernel reads the row positions and reads and writes the force rows, the sum reads the lists
-    /// and the rows and reads and writes f. No element data (the force field adds its own).
+    /// and writes the internal copy (above the direct-gather size), loadRows reads its row lists
+    /// and the positions (once per node) into a thread's rows (in its cache, not counted), commit
+    /// writes the force rows, the sum reads the lists and the rows and reads and writes f. No
+    /// element data (the force field adds its own).
     core::LayoutBytes stepBytes() const;
     /// positionsIn's copy for the internal nodes [lo, hi) only (nothing when directGather()), and
     /// sumInto for the state nodes [lo, hi) only: any thread, disjoint ranges (the threaded step,
@@ -168,7 +204,6 @@ private:
     bool m_directGather = false;
     bool m_ownCopy = true;  ///< positions in internal order kept here (Source::Auto above the direct size)
     simd::DVec m_xin;   ///< positions in internal order, 4 doubles per node
-    simd::DVec m_xrow;  ///< positions per row
     simd::DVec m_buf;   ///< forces per row (the per-block node buffers)
 };
 
@@ -192,12 +227,6 @@ FASCIA_INLINE void CompactBlockBuffers::loadRows(size_t b, const double* xi, dou
             for (int k = 0; k < 4; ++k) q[k] = p[k];
         }
     }
-}
-
-template <bool ClearForces>
-FASCIA_INLINE void CompactBlockBuffers::loadBlock(size_t b, const double* xi) {
-    loadRows(b, xi, m_xrow.data() + 4 * m_rowStart[b]);
-    if constexpr (ClearForces) std::fill(m_buf.data() + 4 * m_rowStart[b], m_buf.data() + 4 * m_rowStart[b + 1], 0.0);
 }
 
 } // namespace fascia::elements

@@ -85,7 +85,8 @@ public:
     long prepareNodes() const override;
     void prepareRange(long lo, long hi) override;
     long forceBlocks() const override;
-    void runForceBlock(long b) override;
+    bool rerunnableBlocks() const override;
+    void runForceBlock(long b, int thread) override;
     void sumForceRange(double* f, long lo, long hi) override;
     /// Elastic energy sum_e Vol_e W_e (J) at the state's positions (viscous history not included).
     double potentialEnergy(const core::BaseMechanicalState& state) const override;

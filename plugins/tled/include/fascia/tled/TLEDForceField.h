@@ -97,7 +97,8 @@ public:
     long prepareNodes() const override;
     void prepareRange(long lo, long hi) override;
     long forceBlocks() const override;
-    void runForceBlock(long b) override;
+    bool rerunnableBlocks() const override;
+    void runForceBlock(long b, int thread) override;
     void sumForceRange(double* f, long lo, long hi) override;
     /// Elastic strain energy (J) at the current positions, hourglass energy included.
     double potentialEnergy(const core::BaseMechanicalState& state) const override;
