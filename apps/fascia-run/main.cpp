@@ -2,6 +2,7 @@
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
 #include "fascia/sim/Simulation.h"
+#include "fascia/sim/StepTeam.h"
 
 #include <omp.h>
 #include <unistd.h>
@@ -17,6 +18,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,7 +30,7 @@ const char* kHelp = R"(fascia-run: run a Fascia scene headless
 
 usage:
   fascia-run SCENE.xml [--steps N | --time T] [--dt DT] [--threads N] [--output DIR] [--quiet] [--timers]
-             [--checkpoint FILE [--checkpoint-every N]] [--restart FILE]
+             [--checkpoint FILE [--checkpoint-every N]] [--restart FILE] [--worker-cores LIST]
   fascia-run --list
   fascia-run --describe COMPONENT
   fascia-run --help
@@ -40,6 +42,10 @@ options:
                    error (default: the root node's endTime, or 100 steps when it has none)
   --dt DT          time step in seconds, overriding the scene's dt
   --threads N      OpenMP threads (default: all cores); results do not depend on it
+  --worker-cores LIST  pin the step's worker threads to these cores (1 or 1,3; worker t on
+                   the t-th of the list, round robin; default: where the kernel puts them):
+                   with another busy thread on the machine, start fascia-run pinned (taskset
+                   -c 0) and give the workers the core it shares (docs/performance.md, lesson 18)
   --output DIR     folder exporters and monitors write into (created; default: .)
   --quiet          no progress bar
   --timers         time each component and print the table at the end (inclusive: an
@@ -188,6 +194,7 @@ struct Options {
     long steps = -1, checkpointEvery = 0;
     double endTime = -1, dt = 0;
     int threads = 0;
+    std::vector<int> workerCores;
     bool quiet = false, timers = false, list = false, help = false;
 };
 
@@ -208,6 +215,14 @@ Options parseArgs(int argc, char** argv) {
             o.dt = parseNumber(a, next());
         } else if (a == "--threads") {
             o.threads = int(parseCount(a, next(), 1, 1024));
+        } else if (a == "--worker-cores") {
+            const char* v = next();
+            if (!v) usage("--worker-cores needs a list of cores, such as 1 or 1,3");
+            try {
+                o.workerCores = fascia::core::parseCoreList(v);
+            } catch (const std::invalid_argument& e) {
+                usage(std::string("--worker-cores: ") + e.what());
+            }
         } else if (a == "--output") {
             const char* v = next();
             if (!v) usage("--output needs a folder");
@@ -320,6 +335,9 @@ int finishRun(Simulation& sim, const Options& o, const RunResult& r) {
     const double simulated = sim.time();
     std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", r.done,
                 simulated, r.wall, r.done ? 1e3 * r.wall / double(r.done) : 0.0, r.wall > 0 ? simulated / r.wall : 0.0);
+    if (const long refused = fascia::core::workerPinFailures())
+        std::fprintf(stderr, "fascia-run: warning: a worker could not be pinned to its core %ld times (sched_setaffinity "
+                             "refused: a cpuset without the core?); the workers ran where the kernel put them\n", refused);
     if (o.timers) {
         std::printf("%-40s %-22s %12s %10s\n", "component", "type", "seconds", "calls");
         for (auto& t : sim.timers())
@@ -359,6 +377,7 @@ int main(int argc, char** argv) {
         if (!o.describeName.empty()) return describe(o.describeName);
         if (o.scene.empty()) usage("no scene given");
         if (o.threads > 0) omp_set_num_threads(o.threads);
+        if (!o.workerCores.empty()) fascia::core::setWorkerCores(o.workerCores);
         setTimersEnabled(o.timers);
         double T = 0;
         sim = loadScene(o, T);

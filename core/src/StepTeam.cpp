@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include <sched.h>
+#include <unistd.h>
 #include <time.h>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -87,6 +90,63 @@ thread_local CurrentTask t_task;
 
 std::atomic<long> g_takeovers{0};
 
+/// A phase's tag from its even epoch: 32 bits, as the range counters and task slots hold it in
+/// their high halves (it wraps after 2^32 phases, where a 64-bit compare would never match again).
+inline std::uint64_t tagOf(std::uint64_t epoch) { return (epoch >> 1) & 0xffffffffu; }
+std::atomic<long> g_pinFailures{0};
+
+/// The workers' cores (setWorkerCores): the list and its generation, which a worker compares with
+/// the one it applied before each phase it joins.
+struct CoreList {
+    std::mutex mutex;
+    std::vector<int> cores;
+    std::atomic<unsigned> generation{0};
+};
+CoreList& coreList() {
+    static CoreList* c = [] {
+        auto* l = new CoreList;  // (never destroyed, as the team)
+        if (const char* e = std::getenv("FASCIA_WORKER_CORES"); e && *e) {
+            try {
+                l->cores = parseCoreList(e);
+                l->generation = 1;
+            } catch (const std::invalid_argument& err) {
+                std::fprintf(stderr, "fascia: FASCIA_WORKER_CORES ignored: %s\n", err.what());
+            }
+        }
+        return l;
+    }();
+    return *c;
+}
+
+/// A worker's pinning: applies the core list when its generation changed (worker t of the team).
+class WorkerPin {
+public:
+    WorkerPin() { m_saved = sched_getaffinity(0, sizeof m_original, &m_original) == 0; }
+    void update(int t) {
+        CoreList& l = coreList();
+        const unsigned g = l.generation.load(std::memory_order_acquire);
+        if (g == m_applied) return;
+        m_applied = g;
+        cpu_set_t set;
+        {
+            std::lock_guard<std::mutex> lock(l.mutex);
+            if (l.cores.empty()) {
+                if (!m_saved) return;
+                set = m_original;
+            } else {
+                CPU_ZERO(&set);
+                CPU_SET(l.cores[size_t(t - 1) % l.cores.size()], &set);
+            }
+        }
+        if (sched_setaffinity(0, sizeof set, &set) != 0) g_pinFailures.fetch_add(1, std::memory_order_relaxed);
+    }
+
+private:
+    cpu_set_t m_original;
+    bool m_saved = false;
+    unsigned m_applied = 0;
+};
+
 constexpr int kMaxThreads = 64;
 /// How long an idle worker spins for the next phase before it sleeps (a step of a small mesh
 /// comes every few tenths of a millisecond).
@@ -140,7 +200,7 @@ private:
         m_busyNs.store(0, std::memory_order_relaxed);
         m_lastScan = 0;
         if (n > m_capacity) growSlots(n);
-        const std::uint64_t tag = (e + 2) >> 1;
+        const std::uint64_t tag = tagOf(e + 2);
         for (int r = 0; r < ranges; ++r) m_counters[r].word.store(tag << 32, std::memory_order_relaxed);
         m_epoch.store(e + 2, std::memory_order_seq_cst);  // (seq_cst: against m_sleeping, see sleep)
         if (m_sleeping.load(std::memory_order_seq_cst) > 0) {
@@ -195,11 +255,12 @@ private:
 
     /// Runs task k of phase p on thread t; true when this run's result is the task's (claimTask).
     static bool runTask(TeamJob& job, int p, long k, int t, TaskSlot& s, std::uint64_t tag) {
-        t_task = CurrentTask{&s.word, tag, false};
+        struct Current {  // (reset however the task ends)
+            Current(TaskSlot& s, std::uint64_t tag) { t_task = CurrentTask{&s.word, tag, false}; }
+            ~Current() { t_task = CurrentTask{}; }
+        } current(s, tag);
         job.run(p, k, t);
-        const bool mine = t_task.claimed || claimTask();  // (a task that never asked claims here)
-        t_task = CurrentTask{};
-        return mine;
+        return t_task.claimed || claimTask();  // (a task that never asked claims here)
     }
 
     /// On the caller, with nothing left to take: runs again a rerunnable task of the phase that has
@@ -263,6 +324,7 @@ private:
     void workerLoop(int t) {
         std::uint64_t seen = 0;
         RunClock clock;
+        WorkerPin pin;
         auto idleSince = std::chrono::steady_clock::now();
         for (unsigned spins = 0;; ++spins) {
             const std::uint64_t e = m_epoch.load(std::memory_order_acquire);
@@ -273,7 +335,8 @@ private:
                 const long n = m_total.load(std::memory_order_relaxed);
                 std::atomic_thread_fence(std::memory_order_acquire);
                 if (m_epoch.load(std::memory_order_relaxed) != e) continue;  // (being replaced: read again)
-                if (job && t < threads) work(*job, p, n, ranges, t, e >> 1, &clock);
+                pin.update(t);
+                if (job && t < threads) work(*job, p, n, ranges, t, tagOf(e), &clock);
                 seen = e;
                 idleSince = std::chrono::steady_clock::now();
                 continue;
@@ -352,6 +415,49 @@ bool claimTask() {
 void waitForLateTasks() { team().waitForLate(); }
 
 long teamTakeovers() { return g_takeovers.load(std::memory_order_relaxed); }
+
+std::vector<int> parseCoreList(const std::string& text) {
+    const long have = sysconf(_SC_NPROCESSORS_CONF);
+    std::vector<int> cores;
+    size_t at = 0;
+    for (;;) {
+        const size_t comma = text.find(',', at);
+        const std::string item = text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+        size_t used = 0;
+        long c = -1;
+        try {
+            c = std::stol(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (item.empty() || used != item.size() || c < 0)
+            throw std::invalid_argument("'" + text + "' is not a list of core numbers such as 1 or 1,3 (at '" + item + "')");
+        if (c >= have || c >= CPU_SETSIZE)
+            throw std::invalid_argument("core " + item + " of '" + text + "': this machine has cores 0 to " + std::to_string(have - 1));
+        cores.push_back(int(c));
+        if (comma == std::string::npos) return cores;
+        at = comma + 1;
+    }
+}
+
+void setWorkerCores(const std::vector<int>& cores) {
+    const long have = sysconf(_SC_NPROCESSORS_CONF);
+    for (int c : cores)
+        if (c < 0 || c >= have || c >= CPU_SETSIZE)
+            throw std::invalid_argument("setWorkerCores: core " + std::to_string(c) + ": this machine has cores 0 to " + std::to_string(have - 1));
+    CoreList& l = coreList();
+    std::lock_guard<std::mutex> lock(l.mutex);
+    l.cores = cores;
+    l.generation.fetch_add(1, std::memory_order_acq_rel);
+}
+
+std::vector<int> workerCores() {
+    CoreList& l = coreList();
+    std::lock_guard<std::mutex> lock(l.mutex);
+    return l.cores;
+}
+
+long workerPinFailures() { return g_pinFailures.load(std::memory_order_relaxed); }
 
 void setOwnedRanges(bool on) { g_owned.store(on); }
 bool ownedRanges() { return g_owned.load(std::memory_order_relaxed); }

@@ -441,12 +441,15 @@ void HEMLForceField::prepareRange(long lo, long hi) { m_data->rows.positionsRang
 
 long HEMLForceField::forceBlocks() const { return static_cast<long>(m_data->blocks.size()); }
 
-bool HEMLForceField::rerunnableBlocks() const { return m_data->nTerms == 0; }
+// (not when the blocks read the state's positions in place, below about 21,800 nodes: a program may
+// reassign the state's x between steps, and a late run would read the freed array)
+bool HEMLForceField::rerunnableBlocks() const { return m_data->nTerms == 0 && !m_data->rows.directGather(); }
 
 void HEMLForceField::runForceBlock(long bl, int thread) {
     // the forces into the thread's own rows, the buffer and the energy written only by the run that
     // claims the block (a block taken over runs twice: core/StepTeam.h); the viscous states are
-    // written in place (Ycur), so viscous blocks are not rerunnable
+    // written in place (Ycur), so viscous blocks are not rerunnable (nor those of small meshes:
+    // rerunnableBlocks)
     HEMLData& d = *m_data;
     const size_t b = static_cast<size_t>(bl);
     const BlockRun run{d.rows.positionsBase(m_evalX), d.scratch.positions(thread), d.scratch.forces(thread, d.rows.rowCount(b))};

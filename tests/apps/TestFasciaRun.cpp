@@ -179,6 +179,10 @@ TEST_CASE("fascia-run --output creates the folder and accepts --threads", "[fasc
     INFO(r.out << r.err);
     CHECK(r.code == 0);
     CHECK(fs::is_directory(w.dir() / "out" / "deep"));
+    r = w.run("good.xml --steps 2 --threads 2 --worker-cores 0 --output out");
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.err, !Contains("could not be pinned"));
 }
 
 TEST_CASE("fascia-run exits 2 on a bad scene with the located error on stderr", "[fascia-run]") {
@@ -234,7 +238,8 @@ TEST_CASE("fascia-run exits 1 on a bad command line", "[fascia-run]") {
     Workspace w;
     w.write("good.xml", scene("dt=\"0.01\""));
     for (const char* args : {"good.xml --steps 3 --time 1", "good.xml --bogus", "good.xml --steps", "good.xml --steps -2",
-                             "good.xml --dt 0", "good.xml --dt abc", "", "good.xml other.xml"}) {
+                             "good.xml --dt 0", "good.xml --dt abc", "", "good.xml other.xml", "good.xml --worker-cores",
+                             "good.xml --worker-cores 1,,2", "good.xml --worker-cores x", "good.xml --worker-cores 99999"}) {
         CAPTURE(args);
         auto r = w.run(args);
         CHECK(r.code == 1);

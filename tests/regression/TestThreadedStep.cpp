@@ -11,11 +11,13 @@
 #include <catch2/catch.hpp>
 
 #include <omp.h>
+#include <sched.h>
 
 #include <atomic>
 #include <chrono>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -29,6 +31,7 @@ namespace {
 struct Case {
     std::string ff, element, integrator;
     bool prony = false;
+    std::string resolution = "12 12 20";
 };
 
 std::string scene(const Case& c) {
@@ -39,7 +42,7 @@ std::string scene(const Case& c) {
     // 12 x 12 x 20 cells: 3,549 nodes (4 node chunks, above the threshold of the parallel node loops),
     // 17,280 tetrahedra or 2,880 hexahedra: several blocks for every force field
     return "<Node name=\"root\" dt=\"auto\" dtSafety=\"0.5\" gravity=\"0 0 -9.81\">\n"
-           "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.06 0.06 0.1\" resolution=\"12 12 20\" element=\"" +
+           "  <GridMesh name=\"grid\" min=\"0 0 0\" max=\"0.06 0.06 0.1\" resolution=\"" + c.resolution + "\" element=\"" +
            c.element + "\"/>\n"
            "  <MechanicalObject name=\"state\"/>\n  <LumpedMass density=\"1000\"/>\n"
            "  <CompressibleNeoHookean youngModulus=\"3000\" poissonRatio=\"0.45\"/>\n" +
@@ -115,13 +118,17 @@ TEST_CASE("the threaded step is bitwise the sequential path with 1, 2 and 3 thre
 
 TEST_CASE("the threaded step gives the same bits when one thread is held up in its blocks", "[threaded][determinism]") {
     const int saved = omp_get_max_threads();
-    const std::string kind = GENERATE("HEMLForceField tetrahedra6", "TLEDForceField tetrahedra6");
+    const std::string kind = GENERATE("HEMLForceField tetrahedra6", "TLEDForceField tetrahedra6", "HEMLForceField large");
     // elastic blocks are taken over by the caller when held up (a late run's result is dropped),
-    // viscous ones are waited for (they write their states in place)
+    // viscous ones are waited for (they write their states in place), and so are HEML's below about
+    // 21,800 nodes (they read the state's positions in place); "large": 29 x 29 x 29 nodes
     const bool prony = GENERATE(true, false);
     const size_t space = kind.find(' ');
-    const Case c{kind.substr(0, space), kind.substr(space + 1), "SemiImplicitEuler", prony};
-    CAPTURE(c.ff, prony);
+    const bool large = kind.substr(space + 1) == "large";
+    Case c{kind.substr(0, space), large ? "tetrahedra6" : kind.substr(space + 1), "SemiImplicitEuler", prony};
+    if (large) c.resolution = "28 28 28";
+    const bool rerunnable = !prony && (c.ff == "TLEDForceField" || large);
+    CAPTURE(c.ff, prony, large);
     const Result reference = run(c, 1, false, 8);
     const long takeovers = fascia::core::teamTakeovers();
     const int held = g_heldUp.load();
@@ -132,10 +139,10 @@ TEST_CASE("the threaded step gives the same bits when one thread is held up in i
     const Result shared = run(c, 2, true, 8);
     fascia::core::setOwnedRanges(true);
     fascia::core::setTaskHook(nullptr);
-    CHECK(g_heldUp > 0);
+    CHECK(g_heldUp > 0);  // (over the cases so far: on a loaded machine thread 1 may take no block in one)
     // (on a loaded machine thread 1 may come too late to take a block in these runs; the step team's
     // own test below makes sure a takeover happens)
-    if (prony) CHECK(fascia::core::teamTakeovers() == takeovers);
+    if (!rerunnable) CHECK(fascia::core::teamTakeovers() == takeovers);
     else if (g_heldUp.load() > held) CHECK(fascia::core::teamTakeovers() > takeovers);
     requireSame(reference, two);
     requireSame(reference, three);
@@ -367,4 +374,60 @@ TEST_CASE("the step team takes over a task whose thread is held up, and drops th
     CHECK(seen == 3);
     CHECK(fascia::core::teamTakeovers() >= before + 3);
     CHECK(fascia::core::claimTask());  // outside a task: always
+}
+
+namespace {
+
+/// One phase of 64 tasks of 20 us each; a worker's tasks record the worker's affinity mask.
+class AffinityJob final : public fascia::core::TeamJob {
+public:
+    std::atomic<int> byWorker{0}, onlyCore0{0};
+    int phases() const override { return 1; }
+    long tasks(int) const override { return 64; }
+    void run(int, long, int thread) override {
+        for (const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(20); std::chrono::steady_clock::now() < until;) {
+        }
+        if (thread == 0) return;
+        cpu_set_t set;
+        sched_getaffinity(0, sizeof set, &set);
+        ++byWorker;
+        if (CPU_COUNT(&set) == 1 && CPU_ISSET(0, &set)) ++onlyCore0;
+    }
+};
+
+/// Runs AffinityJobs on 2 threads until the worker took part (it may come late on a loaded machine).
+std::shared_ptr<AffinityJob> runUntilTheWorkerHelps() {
+    std::shared_ptr<AffinityJob> job;
+    for (int round = 0; round < 200; ++round) {
+        job = std::make_shared<AffinityJob>();
+        fascia::core::runTeamJob(job, 2);
+        if (job->byWorker.load() > 0) break;
+    }
+    return job;
+}
+
+} // namespace
+
+TEST_CASE("the step team's workers run on the cores they are given, and where they may again after", "[threaded]") {
+    using fascia::core::parseCoreList;
+    CHECK(parseCoreList("0") == std::vector<int>{0});
+    for (const char* bad : {"", "a", "1,,0", "-1", "0x", ",0", "0,", "100000"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(parseCoreList(bad), std::invalid_argument);
+    }
+    CHECK_THROWS_WITH(parseCoreList("100000"), Catch::Contains("this machine has cores 0 to"));
+    CHECK_THROWS_AS(fascia::core::setWorkerCores({100000}), std::invalid_argument);
+    CHECK(fascia::core::workerCores().empty());
+
+    fascia::core::setWorkerCores({0});
+    CHECK(fascia::core::workerCores() == std::vector<int>{0});
+    const auto pinned = runUntilTheWorkerHelps();
+    fascia::core::setWorkerCores({});
+    const auto free = runUntilTheWorkerHelps();
+    REQUIRE(pinned->byWorker.load() > 0);
+    CHECK(pinned->onlyCore0.load() == pinned->byWorker.load());
+    CHECK(fascia::core::workerPinFailures() == 0);
+    cpu_set_t mine;
+    sched_getaffinity(0, sizeof mine, &mine);
+    if (CPU_COUNT(&mine) > 1 && free->byWorker.load() > 0) CHECK(free->onlyCore0.load() == 0);
 }

@@ -39,6 +39,8 @@
 /// thread (TeamChoice) leaves them asleep, off the other cores.
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace fascia::core {
 
@@ -74,6 +76,21 @@ void waitForLateTasks();
 
 /// Tasks the caller has taken over so far in this process (for tests and benchmarks).
 long teamTakeovers();
+
+/// The cores the step team's workers run on: worker t (1 .. threads - 1) on cores[(t - 1) % size],
+/// from its next task on; empty (the default): wherever the process may run. For an embedding
+/// program that places its threads itself: under a competing thread, two threads run 0.78 times one
+/// when the step's caller has a core of its own and 1.2 times when it shares one
+/// (docs/performance.md, lesson 18), and the kernel chooses unless told. Pin the simulation thread
+/// yourself and give the workers the cores you share with your render or haptic threads.
+/// FASCIA_WORKER_CORES="1,3" in the environment sets it at start. Throws std::invalid_argument
+/// naming a core this machine does not have.
+void setWorkerCores(const std::vector<int>& cores);
+std::vector<int> workerCores();
+/// Parses a core list ("1", "1,3"): the list, or std::invalid_argument saying what is wrong.
+std::vector<int> parseCoreList(const std::string& text);
+/// Times a worker could not be pinned to its core (sched_setaffinity refused: a cpuset without it).
+long workerPinFailures();
 
 /// Runs job on the calling thread and on up to threads - 1 workers, as above; returns when every
 /// task of every phase is done. threads <= 1: on the caller alone, in order. The team keeps the job
