@@ -7,6 +7,8 @@ namespace fascia::elements {
 namespace {
 /// Nodes per tile of the reduction (its sums, 3 doubles a node, stay in L1).
 constexpr int kNodeTile = 1024;
+/// How many nodes ahead the compact sum prefetches the rows of a renumbered node.
+constexpr long kSumAhead = 8;
 } // namespace
 
 size_t BlockBuffers::addBlock(int lo, int hi) {
@@ -156,6 +158,9 @@ void CompactBlockBuffers::finish(std::vector<int> nodeOf, Source source) {
     for (size_t r = 0; r < rows; ++r) m_rowNode[r] = m_nodeOf[static_cast<size_t>(m_rowInternal[r])];
     m_directGather = source == Source::Auto && n * 3 * sizeof(double) <= (size_t(1) << 19);
     m_ownCopy = source == Source::Auto && !m_directGather;
+    // the sum prefetches when the rows outgrow a core's L2 and the nodes were renumbered
+    m_prefetchSum = false;
+    for (size_t p = 0; p < n && !m_prefetchSum && 4 * rows * sizeof(double) > (size_t(2) << 20); ++p) m_prefetchSum = m_nodeOf[p] != int(p);
     m_xin.assign(m_ownCopy ? 4 * n : 0, 0.0);
     m_buf.assign(4 * rows, 0.0);
     // per node, its rows; rows ascend with the block index, so each list is in block order
@@ -199,6 +204,14 @@ void CompactBlockBuffers::sumRange(double* fp, long lo, long hi) const {
     // per state node, its internal node's rows in block order (the same sum as per internal node)
     hi = std::min(hi, static_cast<long>(m_internalOf.size()));
     for (long i = lo; i < hi; ++i) {
+        // renumbered nodes: their rows lie apart, where the hardware's prefetchers do not follow;
+        // fetch those of the node kSumAhead on (docs/performance.md, "Issue 17: blocks taken over")
+        if (m_prefetchSum && i + kSumAhead < hi) {
+            const int q = m_internalOf[size_t(i + kSumAhead)];
+            if (q >= 0)
+                for (int k = m_nodeRowStart[size_t(q)]; k < m_nodeRowStart[size_t(q) + 1]; ++k)
+                    simd::prefetch(m_buf.data() + 4 * size_t(m_nodeRows[static_cast<size_t>(k)]), 32);
+        }
         const int p = m_internalOf[size_t(i)];
         if (p < 0) continue;
         double a0 = 0.0, a1 = 0.0, a2 = 0.0;

@@ -203,6 +203,7 @@ private:
     std::vector<int> m_nodeRows;        ///< rows of each node, in block order
     bool m_directGather = false;
     bool m_ownCopy = true;  ///< positions in internal order kept here (Source::Auto above the direct size)
+    bool m_prefetchSum = false;  ///< renumbered nodes: the sum prefetches rows ahead
     simd::DVec m_xin;   ///< positions in internal order, 4 doubles per node
     simd::DVec m_buf;   ///< forces per row (the per-block node buffers)
 };
