@@ -408,6 +408,62 @@ std::shared_ptr<AffinityJob> runUntilTheWorkerHelps() {
 
 } // namespace
 
+namespace {
+
+/// One phase of 16 rerunnable tasks; thread 1's first task waits until the caller has started its
+/// run of the same task, and that run then waits until the first has claimed: the first run wins.
+class FirstWinsJob final : public fascia::core::TeamJob {
+public:
+    static constexpr long kTasks = 16;
+    std::atomic<long> held{-1};
+    std::atomic<int> claims{0}, refused{0}, refusedOnCaller{0};
+    std::atomic<bool> rerunStarted{false}, firstClaimed{false};
+    int phases() const override { return 1; }
+    long tasks(int) const override { return kTasks; }
+    bool rerunnable(int, long) const override { return true; }
+    void run(int, long k, int thread) override {
+        long none = -1;
+        const bool first = thread == 1 && held.compare_exchange_strong(none, k);
+        const bool rerun = thread == 0 && held.load() == k;
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        if (first)
+            while (!rerunStarted.load() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::microseconds(50));
+        if (rerun) {
+            rerunStarted = true;
+            while (!firstClaimed.load() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::microseconds(50));
+        }
+        if (!first && !rerun)
+            for (const auto end = std::chrono::steady_clock::now() + std::chrono::microseconds(20); std::chrono::steady_clock::now() < end;) {
+            }
+        if (fascia::core::claimTask()) {
+            ++claims;
+            if (first) firstClaimed = true;
+        } else {
+            ++refused;
+            if (thread == 0) ++refusedOnCaller;
+        }
+    }
+};
+
+} // namespace
+
+TEST_CASE("a task taken over is still the first run's when that run claims first", "[threaded]") {
+    int seen = 0;
+    for (int round = 0; round < 100 && seen < 3; ++round) {
+        auto job = std::make_shared<FirstWinsJob>();
+        fascia::core::runTeamJob(job, 2);
+        fascia::core::waitForLateTasks();
+        CHECK(job->claims.load() == FirstWinsJob::kTasks);
+        if (job->held.load() < 0) continue;  // (thread 1 came too late to take a task: again)
+        ++seen;
+        CHECK(job->rerunStarted.load());
+        CHECK(job->firstClaimed.load());
+        CHECK(job->refused.load() == 1);
+        CHECK(job->refusedOnCaller.load() == 1);
+    }
+    CHECK(seen == 3);
+}
+
 TEST_CASE("the step team's workers run on the cores they are given, and where they may again after", "[threaded]") {
     using fascia::core::parseCoreList;
     CHECK(parseCoreList("0") == std::vector<int>{0});
