@@ -323,17 +323,23 @@ namespace {
 
 /// One phase of 64 rerunnable tasks: a run computes its task's value and writes it only when it
 /// claims the task; thread 1's first task is held (its thread off its core) until the test releases it.
-class TakeoverJob final : public fascia::core::TeamJob {
+/// One phase of N rerunnable tasks: the base of the takeover tests' jobs.
+template <long N>
+class RerunnablePhase : public fascia::core::TeamJob {
 public:
-    static constexpr long kTasks = 64;
+    static constexpr long kTasks = N;
+    int phases() const override { return 1; }
+    long tasks(int) const override { return N; }
+    bool rerunnable(int, long) const override { return true; }
+};
+
+class TakeoverJob final : public RerunnablePhase<64> {
+public:
     std::vector<std::atomic<int>> claims = std::vector<std::atomic<int>>(size_t(kTasks));
     std::vector<long> value = std::vector<long>(size_t(kTasks), -1);
     std::atomic<long> held{-1};
     std::atomic<int> refused{0};
     std::atomic<bool> release{false}, lateDone{false};
-    int phases() const override { return 1; }
-    long tasks(int) const override { return kTasks; }
-    bool rerunnable(int, long) const override { return true; }
     void run(int, long k, int thread) override {
         long none = -1;
         const bool hold = thread == 1 && held.compare_exchange_strong(none, k);
@@ -412,15 +418,11 @@ namespace {
 
 /// One phase of 16 rerunnable tasks; thread 1's first task waits until the caller has started its
 /// run of the same task, and that run then waits until the first has claimed: the first run wins.
-class FirstWinsJob final : public fascia::core::TeamJob {
+class FirstWinsJob final : public RerunnablePhase<16> {
 public:
-    static constexpr long kTasks = 16;
     std::atomic<long> held{-1};
     std::atomic<int> claims{0}, refused{0}, refusedOnCaller{0};
     std::atomic<bool> rerunStarted{false}, firstClaimed{false};
-    int phases() const override { return 1; }
-    long tasks(int) const override { return kTasks; }
-    bool rerunnable(int, long) const override { return true; }
     void run(int, long k, int thread) override {
         long none = -1;
         const bool first = thread == 1 && held.compare_exchange_strong(none, k);
