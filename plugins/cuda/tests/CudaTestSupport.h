@@ -148,6 +148,9 @@ inline std::string scene(const Law& law, const std::string& root, const std::str
 /// emulation of its kernels, or on the GPU.
 inline std::string emulated(const std::string& precision) { return "<CudaStep emulate=\"true\" precision=\"" + precision + "\"/>"; }
 inline std::string onGpu(const std::string& precision) { return "<CudaStep precision=\"" + precision + "\"/>"; }
+/// The largest relative difference from the CPU allowed to a CudaStep of that precision: 1e-4 in
+/// float, inDouble (1e-11 for trajectories) in double.
+inline double deviceTolerance(const std::string& precision, double inDouble = 1e-11) { return precision == "double" ? inDouble : 1e-4; }
 
 /// Deforms the state: x = A X + a jitter (seeded), v = 0.
 inline void deform(core::BaseMechanicalState& mo, double scale) {

@@ -24,6 +24,9 @@ void requireDevice() {
     }
 }
 
+/// A runner of real CUDA launches, 128 threads a block: what the cases below compare with the CPU.
+std::unique_ptr<cuda::StepRunner> gpuRunner(const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); }
+
 } // namespace
 
 TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "[CudaStep]") {
@@ -34,7 +37,7 @@ TEST_CASE("The GPU element and node kernels give TLED's forces on every node", "
     const bool useFloat = GENERATE(false, true);
     CAPTURE(law.name, meshName(mesh), scale, useFloat);
     ForceProbe p = probeForces(law, scale, mesh);
-    const double err = forceError([](const cuda::StepSetup& s, cuda::Precision pr) { return cuda::makeCudaRunner(s, pr, 128); }, p,
+    const double err = forceError(gpuRunner, p,
                                   useFloat ? cuda::Precision::Float : cuda::Precision::Double);
     CAPTURE(sci(err));
     CHECK(err <= (useFloat ? 1e-5 : 1e-12));
@@ -47,7 +50,7 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory over 1000 steps", "[Cu
     CAPTURE(law.name, precision);
     const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
-    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.err <= (deviceTolerance(precision)));
 }
 
 TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000 steps", "[CudaStep]") {
@@ -58,7 +61,7 @@ TEST_CASE("CudaStep on the GPU follows the CPU trajectory of hexahedra over 1000
     CAPTURE(meshName(mesh), law.name, precision);
     const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, onGpu(precision), 1000);
     CAPTURE(sci(r.err));
-    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.err <= (deviceTolerance(precision)));
 }
 
 TEST_CASE("CudaStep on the GPU follows CentralDifference and PrescribedDisplacement over 1000 steps", "[CudaStep]") {
@@ -181,38 +184,38 @@ TEST_CASE("CudaStep on the GPU gives the constraints' reactions as the CPU does"
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::reactionsFollow(onGpu(precision), precision == "float" ? 1e-4 : 1e-9);
+    residency::reactionsFollow(onGpu(precision), deviceTolerance(precision, 1e-9));
 }
 
 TEST_CASE("CudaStep on the GPU brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::relaxedStressesFollow(onGpu(precision), precision == "float" ? 1e-4 : 1e-9);
+    residency::relaxedStressesFollow(onGpu(precision), deviceTolerance(precision, 1e-9));
 }
 
 TEST_CASE("CudaStep on the GPU scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::curvedForcesFollowTheCpu(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    loads::curvedForcesFollowTheCpu(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::pressuresFollowTheCpu(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    loads::pressuresFollowTheCpu(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same forces and trajectory with the corner forces in node order", "[CudaStep]") {
     requireDevice();
-    loads::forceOrderIsBitwise([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); }, "<CudaStep");
+    loads::forceOrderIsBitwise(gpuRunner, "<CudaStep");
 }
 
 TEST_CASE("The GPU element kernels give TLED's forces with materials per group and fibres per element", "[CudaStep][groupMaterials]") {
     requireDevice();
-    groups::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+    groups::forcesMatch(gpuRunner);
 }
 
 TEST_CASE("CudaStep on the GPU follows TLEDForceField with materials per group and fibres per element over 1000 steps",
@@ -220,7 +223,7 @@ TEST_CASE("CudaStep on the GPU follows TLEDForceField with materials per group a
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::trajectoriesFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    groups::trajectoriesFollow(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU relaxes materials per group with fibres per element as TLEDForceField does",
@@ -228,7 +231,7 @@ TEST_CASE("CudaStep on the GPU relaxes materials per group with fibres per eleme
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::relaxedGroupsFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    groups::relaxedGroupsFollow(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory of groups with fibre arrays for any block size", "[CudaStep][groupMaterials]") {
@@ -250,26 +253,26 @@ TEST_CASE("CudaStep on the GPU gives bitwise the same trajectory of groups with 
 
 TEST_CASE("The GPU edge-form kernel gives HEML's forces for every law and the springs", "[CudaStep][HEML]") {
     requireDevice();
-    heml::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+    heml::forcesMatch(gpuRunner);
 }
 
 TEST_CASE("CudaStep on the GPU follows HEMLForceField over 1000 steps, every law and the springs", "[CudaStep][HEML]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::trajectoriesFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::trajectoriesFollow(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU relaxes HEML as HEMLForceField does, either part or both, or refuses as it does", "[CudaStep][HEML][ViscoelasticProny]") {
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::relaxedFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::relaxedFollow(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("The GPU edge-form kernel gives HEML's forces with materials per group and fibre arrays", "[CudaStep][HEML][groupMaterials]") {
     requireDevice();
-    heml::groupForcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeCudaRunner(s, p, 128); });
+    heml::groupForcesMatch(gpuRunner);
 }
 
 TEST_CASE("CudaStep on the GPU follows HEMLForceField with materials per group and fibre arrays over 1000 steps",
@@ -277,7 +280,7 @@ TEST_CASE("CudaStep on the GPU follows HEMLForceField with materials per group a
     requireDevice();
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::groupsFollow(onGpu(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::groupsFollow(onGpu(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep on the GPU gives bitwise the same HEML trajectory for any block size", "[CudaStep][HEML]") {

@@ -58,7 +58,7 @@ TEST_CASE("CudaStep emulated follows the CPU trajectory over 400 steps", "[CudaS
     const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", Mesh::Tets,
                            "<CudaStep emulate=\"true\" blockSize=\"64\" precision=\"" + precision + "\"/>", 400);
     CAPTURE(sci(r.err));
-    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.err <= (deviceTolerance(precision)));
     CHECK(r.moved > 1e-5);  // (a trajectory that stayed at rest would compare well too)
 }
 
@@ -69,7 +69,7 @@ TEST_CASE("CudaStep emulated follows the CPU trajectory of hexahedra with hourgl
     CAPTURE(meshName(mesh), law.name, precision);
     const Pair r = runBoth(law, "", "<SemiImplicitEuler damping=\"5\"/>", mesh, emulated(precision), 1000);
     CAPTURE(sci(r.err));
-    CHECK(r.err <= (precision == "double" ? 1e-11 : 1e-4));
+    CHECK(r.err <= (deviceTolerance(precision)));
     CHECK(r.moved > 1e-4);
 }
 
@@ -304,21 +304,21 @@ TEST_CASE("CudaStep without a usable device is a located input error, never a ho
 }
 
 TEST_CASE("The emulated kernels give TLED's forces with materials per group and fibres per element", "[CudaStep][groupMaterials]") {
-    groups::forcesMatch([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeEmulatedRunner(s, p); });
+    groups::forcesMatch(cuda::makeEmulatedRunner);
 }
 
 TEST_CASE("CudaStep emulated follows TLEDForceField with materials per group and fibres per element over 1000 steps",
           "[CudaStep][groupMaterials]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::trajectoriesFollow(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    groups::trajectoriesFollow(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep emulated relaxes materials per group with fibres per element as TLEDForceField does",
           "[CudaStep][groupMaterials][ViscoelasticProny]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    groups::relaxedGroupsFollow(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    groups::relaxedGroupsFollow(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep emulated reads the fibre arrays and the groups: their trajectories leave the uniform ones by far more than their error",

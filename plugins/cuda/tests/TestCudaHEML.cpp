@@ -12,7 +12,7 @@ TEST_CASE("The emulated edge-form kernel gives HEML's forces for every law and t
 TEST_CASE("CudaStep emulated follows HEMLForceField over 1000 steps, every law and the springs", "[CudaStep][HEML]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::trajectoriesFollow(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::trajectoriesFollow(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep emulated follows HEMLForceField with CentralDifference and PrescribedDisplacement over 1000 steps", "[CudaStep][HEML]") {
@@ -29,7 +29,7 @@ TEST_CASE("CudaStep emulated follows HEMLForceField with CentralDifference and P
 TEST_CASE("CudaStep emulated relaxes HEML as HEMLForceField does, either part or both, or refuses as it does", "[CudaStep][HEML][ViscoelasticProny]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::relaxedFollow(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::relaxedFollow(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep emulated relaxes HEML: the viscous trajectory leaves the elastic one by far more than its error", "[CudaStep][HEML][ViscoelasticProny]") {
@@ -50,7 +50,7 @@ TEST_CASE("CudaStep emulated follows HEMLForceField with materials per group and
           "[CudaStep][HEML][groupMaterials]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    heml::groupsFollow(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    heml::groupsFollow(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("The device step refuses a second element force field or a second series beside HEML, located", "[CudaStep][HEML]") {

@@ -7,13 +7,13 @@ using namespace cudatest;
 TEST_CASE("CudaStep emulated scales ConstantForce by its load curve as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::curvedForcesFollowTheCpu(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    loads::curvedForcesFollowTheCpu(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("CudaStep emulated applies SurfacePressure's follower load as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    loads::pressuresFollowTheCpu(emulated(precision), precision == "double" ? 1e-11 : 1e-4);
+    loads::pressuresFollowTheCpu(emulated(precision), deviceTolerance(precision));
 }
 
 TEST_CASE("More ConstantForce components with a load curve than the device step takes is a located error", "[CudaStep]") {
@@ -27,6 +27,5 @@ TEST_CASE("More ConstantForce components with a load curve than the device step 
 }
 
 TEST_CASE("CudaStep emulated gives bitwise the same forces and trajectory with the corner forces in node order", "[CudaStep]") {
-    loads::forceOrderIsBitwise([](const cuda::StepSetup& s, cuda::Precision p) { return cuda::makeEmulatedRunner(s, p); },
-                               "<CudaStep emulate=\"true\"");
+    loads::forceOrderIsBitwise(cuda::makeEmulatedRunner, "<CudaStep emulate=\"true\"");
 }

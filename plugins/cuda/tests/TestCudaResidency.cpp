@@ -28,11 +28,11 @@ TEST_CASE("CudaStep emulated restarts from a checkpoint bitwise as the run that 
 TEST_CASE("CudaStep emulated gives the constraints' reactions as the CPU does", "[CudaStep]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::reactionsFollow(emulated(precision), precision == "float" ? 1e-4 : 1e-9);
+    residency::reactionsFollow(emulated(precision), deviceTolerance(precision, 1e-9));
 }
 
 TEST_CASE("CudaStep emulated brings the Prony states back with the state: the relaxed stresses are the CPU's", "[CudaStep][ViscoelasticProny]") {
     const std::string precision = GENERATE(as<std::string>{}, "double", "float");
     CAPTURE(precision);
-    residency::relaxedStressesFollow(emulated(precision), precision == "float" ? 1e-4 : 1e-9);
+    residency::relaxedStressesFollow(emulated(precision), deviceTolerance(precision, 1e-9));
 }
