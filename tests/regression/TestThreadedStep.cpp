@@ -92,6 +92,19 @@ void holdUpThreadOne(int thread, long) {
     }
 }
 
+/// Steps of TeamChoice t in which a step takes `all` seconds on all threads (team 1) and `one` on
+/// one thread (team 0): `limit` of them, or fewer when the choice leaves team `whileOn` (-1: run
+/// them all). Returns the steps run.
+long stepChoice(fascia::core::TeamChoice& t, long limit, double all, double one, int whileOn = -1) {
+    long steps = 0;
+    while (steps < limit && (whileOn < 0 || t.current == whileOn)) {
+        const int team = t.choose();
+        t.record(team, team == 1 ? all : one);
+        ++steps;
+    }
+    return steps;
+}
+
 } // namespace
 
 TEST_CASE("the threaded step is bitwise the sequential path with 1, 2 and 3 threads", "[threaded][determinism]") {
@@ -153,27 +166,14 @@ TEST_CASE("the threaded step gives the same bits when one thread is held up in i
 TEST_CASE("the threaded step's team falls back to one thread when its steps are faster, and back", "[threaded]") {
     fascia::core::TeamChoice t;
     // all threads take 1 ms a step, one thread 0.6 ms (a loaded core): the first probe switches
-    long steps = 0;
-    while (t.current == 1 && steps < 100) {
-        const int team = t.choose();
-        t.record(team, team == 1 ? 1e-3 : 0.6e-3);
-        ++steps;
-    }
+    long steps = stepChoice(t, 100, 1e-3, 0.6e-3, 1);
     CHECK(t.current == 0);
     CHECK(steps == fascia::core::TeamChoice::kFirstProbe - 1 + fascia::core::TeamChoice::kProbe);
     // the load goes: all threads now take 0.4 ms, and a later probe switches back
-    steps = 0;
-    while (t.current == 0 && steps < 200) {
-        const int team = t.choose();
-        t.record(team, team == 1 ? 0.4e-3 : 0.6e-3);
-        ++steps;
-    }
+    steps = stepChoice(t, 200, 0.4e-3, 0.6e-3, 0);
     CHECK(t.current == 1);
     // while the choice stands, the probes get rarer (the interval doubles up to 1,024 steps)
-    for (int k = 0; k < 5000; ++k) {
-        const int team = t.choose();
-        t.record(team, team == 1 ? 0.4e-3 : 0.6e-3);
-    }
+    stepChoice(t, 5000, 0.4e-3, 0.6e-3);
     CHECK(t.current == 1);
     CHECK(t.interval == 1024);
 }
@@ -214,10 +214,7 @@ TEST_CASE("the threaded step's team cuts a probe short that is twice as slow, an
     CHECK(switched == 1 + TeamChoice::kProbe);
     // a probe 4 times slower than the team: the interval grows 4 times (16 -> 64), not 2
     TeamChoice q;
-    for (int k = 0; k < TeamChoice::kFirstProbe; ++k) {
-        const int team = q.choose();
-        q.record(team, team == 1 ? 0.5e-3 : 2e-3);
-    }
+    stepChoice(q, TeamChoice::kFirstProbe, 0.5e-3, 2e-3);
     CHECK(q.interval == 64);
 }
 
@@ -239,12 +236,7 @@ TEST_CASE("the threaded step's team keeps all threads that are faster on average
     // right after that probe the scheduler puts the threads badly: all threads take 7.9 ms a step
     // for good. The stalled probe step does not hide one thread (3.4 ms) until the next probe (64
     // steps on): one thread takes over within kKeep steps of the ring filling
-    long slow = 0;
-    while (t.current == 1 && slow < 100) {
-        const int team = t.choose();
-        t.record(team, team == 1 ? 7.9e-3 : 3.4e-3);
-        ++slow;
-    }
+    const long slow = stepChoice(t, 100, 7.9e-3, 3.4e-3, 1);
     CHECK(t.current == 0);
     CHECK(slow <= 2 * TeamChoice::kKeep + TeamChoice::kProbe);
     // and all threads faster on average despite their periodic stalls win the next probe back
