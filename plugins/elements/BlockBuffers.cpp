@@ -19,6 +19,12 @@ size_t BlockBuffers::addBlock(int lo, int hi) {
     return m_lo.size() - 1;
 }
 
+size_t BlockBuffers::maxRows() const {
+    size_t m = 0;
+    for (size_t b = 0; b < blockCount(); ++b) m = std::max(m, rowCount(b));
+    return m;
+}
+
 void BlockBuffers::finish(size_t nodeCount, std::vector<int> nodeOf, Fill how) {
     m_clear = how == Fill::Add;
     m_nodes = nodeCount;

@@ -268,7 +268,7 @@ size_t compactRows(Impl& im) {
 /// docs/performance.md, issue 17, session 13).
 void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice) {
     size_t rangeRows = 0;
-    for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += static_cast<size_t>(im.buffers.hi(b) - im.buffers.lo(b) + 1);
+    for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += im.buffers.rowCount(b);
     im.compact = choice == "compact" || (choice == "auto" && 2 * rangeRows > 3 * compactRows(im));
     if (!im.compact) {
         im.buffers.finish(im.nodeCount, im.nodeOf, elements::BlockBuffers::Fill::Commit);
@@ -277,9 +277,7 @@ void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice
                     " times the node count in their force buffers, in the node order used (the file's, or a reverse "
                     "Cuthill-McKee one when that is more than twice as compact): speed and memory suffer; "
                     "nodeBuffers=\"compact\" does not grow with the ranges");
-        size_t widest = 0;
-        for (size_t b = 0; b < im.buffers.blockCount(); ++b) widest = std::max(widest, size_t(im.buffers.hi(b) - im.buffers.lo(b) + 1));
-        im.scratch.reserve(0, widest);
+        im.scratch.reserve(0, im.buffers.maxRows());
         return;
     }
     im.buffers = elements::BlockBuffers{};

@@ -267,18 +267,15 @@ void TLEDForceField::runForceBlock(long bi, int thread) {
     // the forces into the thread's own rows, the buffer written only by the run that claims the
     // block (a block taken over runs twice: core/StepTeam.h); the viscous states are written in
     // place (Ynew), so viscous blocks are not rerunnable
-    size_t rows = 0;
     if (im.compact) {
-        rows = im.rows.rowCount(b);
         double* u = im.scratch.positions(thread);
         im.rows.loadRows(b, im.u.data(), u);  // the block's rows of u
         io.u = u;
     } else {
-        rows = size_t(im.buffers.hi(b) - im.buffers.lo(b) + 1);
         io.u = im.u.data();
         io.bufLo = im.buffers.lo(b);
     }
-    io.buf = im.scratch.forces(thread, rows);
+    io.buf = im.scratch.forces(thread, im.compact ? im.rows.rowCount(b) : im.buffers.rowCount(b));
     for (size_t v = 0; v < im.visco.size(); ++v) {
         io.Yhist[v] = im.visco[v].Yprev.data();
         io.Ynew[v] = im.visco[v].Ycur.data();

@@ -159,6 +159,8 @@ TEST_CASE("the block buffers add each node's rows in block order and clear them"
     bb.addBlock(1, 3);
     bb.finish(4, {3, 2, 1, 0});  // internal node q is state node 3 - q
     REQUIRE(bb.rows() == 6);
+    CHECK(bb.rowCount(1) == 3);
+    CHECK(bb.maxRows() == 3);
     for (size_t b = 0; b < 2; ++b)
         for (int q = bb.lo(b); q <= bb.hi(b); ++q)
             for (int c = 0; c < 3; ++c) bb.buffer(b)[4 * (q - bb.lo(b)) + c] = 10.0 * double(b + 1) + q + 0.1 * c;
@@ -169,7 +171,7 @@ TEST_CASE("the block buffers add each node's rows in block order and clear them"
     CHECK(f[3 * 3 + 2] == 1.0 + (10 + 0 + 0.2));  // internal 0 only in block 0
     CHECK(f[3 * 0 + 1] == 1.0 + (20 + 3 + 0.1));  // internal 3 only in block 1
     for (size_t b = 0; b < 2; ++b)
-        for (size_t i = 0; i < 4 * size_t(bb.hi(b) - bb.lo(b) + 1); ++i) CHECK(bb.buffer(b)[i] == 0.0);
+        for (size_t i = 0; i < 4 * bb.rowCount(b); ++i) CHECK(bb.buffer(b)[i] == 0.0);
     const double addBytes = double(bb.stepBytes().buffers);
 
     // committed buffers: each block's rows written whole, not cleared by the sum

@@ -48,12 +48,14 @@ public:
     size_t blockCount() const { return m_lo.size(); }
     int lo(size_t b) const { return m_lo[b]; }
     int hi(size_t b) const { return m_hi[b]; }
+    /// Rows of block b's buffer: hi(b) - lo(b) + 1.
+    size_t rowCount(size_t b) const { return static_cast<size_t>(m_hi[b] - m_lo[b] + 1); }
+    /// The most rows of one block.
+    size_t maxRows() const;
     /// The node buffer of block b: row r (4 doubles) is internal node lo(b) + r.
     double* buffer(size_t b) { return m_buf.data() + m_offset[b]; }
-    /// Block b's forces (hi(b) - lo(b) + 1 rows of 4 doubles) become its buffer (BlockScratch).
-    void commit(size_t b, const double* forces) {
-        std::copy(forces, forces + 4 * static_cast<size_t>(m_hi[b] - m_lo[b] + 1), buffer(b));
-    }
+    /// Block b's forces (rowCount(b) rows of 4 doubles) become its buffer (BlockScratch).
+    void commit(size_t b, const double* forces) { std::copy(forces, forces + 4 * rowCount(b), buffer(b)); }
     /// Node rows of all buffers together.
     size_t rows() const { return m_buf.size() / 4; }
     const std::vector<int>& nodeOf() const { return m_nodeOf; }
