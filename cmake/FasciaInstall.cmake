@@ -30,6 +30,18 @@ foreach(d ${_fascia_public_includes})
   install(DIRECTORY ${d}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} ${_fascia_header_filter})
 endforeach()
 
+# scenes (with their meshes), the examples' sources, the docs and the README: share/fascia
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_SOURCE_DIR}/docs DESTINATION ${FASCIA_DATA_SUBDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples DESTINATION ${FASCIA_DATA_SUBDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${FASCIA_DATA_SUBDIR})
+
+# pkg-config, relocatable: the prefix is found from the .pc file's own folder
+set(_fascia_pc_dir ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+file(RELATIVE_PATH FASCIA_PC_PREFIX_FROM_PCFILEDIR /root/${_fascia_pc_dir} /root)
+string(REGEX REPLACE "/$" "" FASCIA_PC_PREFIX_FROM_PCFILEDIR "${FASCIA_PC_PREFIX_FROM_PCFILEDIR}")
+configure_file(${PROJECT_SOURCE_DIR}/cmake/fascia.pc.in ${PROJECT_BINARY_DIR}/fascia.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/fascia.pc DESTINATION ${_fascia_pc_dir})
+
 install(EXPORT FasciaTargets NAMESPACE Fascia:: DESTINATION ${FASCIA_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/FasciaConfig.cmake.in
   ${PROJECT_BINARY_DIR}/FasciaConfig.cmake INSTALL_DESTINATION ${FASCIA_CMAKE_DIR})

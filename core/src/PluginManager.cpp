@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
 namespace fs = std::filesystem;
 
@@ -110,6 +111,33 @@ const LoadedPlugin& PluginManager::load(const std::string& name, const SourceLoc
                     {"build the plugin, give its path, or add its folder to FASCIA_PLUGIN_PATH"});
 }
 
+BuildAbi coreBuildAbi() { return FASCIA_THIS_BUILD_ABI; }
+
+namespace {
+
+/// Refuses a plugin compiled with another Eigen alignment than the core (its Eigen types would have
+/// another layout: fascia/base/Abi.h) and warns about one compiled without optimisation while the
+/// core was (an out-of-tree build without CMAKE_BUILD_TYPE runs its loops tens of times slower).
+void checkBuild(const PluginInfo& info, void* handle, const std::string& file, const SourceLoc& loc) {
+    const BuildAbi core = coreBuildAbi();
+    if (info.build.eigenMaxAlignBytes != core.eigenMaxAlignBytes) {
+        const int seen = info.build.eigenMaxAlignBytes;
+        dlclose(handle);
+        throwInputError(loc, "plugin '" + file + "' was built with EIGEN_MAX_ALIGN_BYTES=" + std::to_string(seen) +
+                                 ", Fascia with " + std::to_string(core.eigenMaxAlignBytes) +
+                                 ": Eigen types would have another layout in the plugin than in the core",
+                        {"rebuild the plugin with Fascia's compile definitions: link Fascia::fascia_core "
+                         "(fascia_add_plugin does), or use `pkg-config --cflags fascia`"});
+    }
+    if (core.optimised && !info.build.optimised) {
+        std::cerr << (loc.empty() ? file : loc.str()) << ": warning: plugin '" << file
+                  << "' was built without optimisation: its components may run tens of times slower; rebuild it "
+                     "with -DCMAKE_BUILD_TYPE=Release (or -O2)\n";
+    }
+}
+
+} // namespace
+
 const LoadedPlugin& PluginManager::loadFile(const std::string& file, const SourceLoc& loc) {
     std::error_code ec;
     const std::string canon = fs::weakly_canonical(fs::path(file), ec).string();
@@ -143,6 +171,7 @@ const LoadedPlugin& PluginManager::loadFile(const std::string& file, const Sourc
         throwInputError(loc, "plugin '" + file + "' was built for ABI " + std::to_string(abi) + ", this is ABI " +
                                  std::to_string(FASCIA_ABI_VERSION) + ": rebuild it against Fascia " FASCIA_VERSION_STRING);
     }
+    checkBuild(*info, h, file, loc);
     const std::string id = info->id ? info->id : "";
     if (id.empty() || !info->registerComponents) {
         dlclose(h);

@@ -1,11 +1,15 @@
 # cmake -DBUILD_DIR=<build> -DWORK_DIR=<empty folder> -P CheckInstallTree.cmake
 #
 # Installs the build into WORK_DIR/prefix and checks that the installed tree holds headers,
-# libraries, the programs and the CMake package only:
-#   - no source file (.cpp) anywhere, no CMakeLists.txt outside lib/cmake, no tests/ folder;
-#   - include/ holds headers (.h) only, lib/cmake/ CMake files (.cmake) only, lib/ otherwise
-#     libraries (.so, .so.N..., .a) only, bin/ the programs only (fascia-run, fascia-bench);
-#   - nothing at the top of the prefix but bin/, include/ and lib/.
+# libraries, the programs, the CMake package, the pkg-config file and share/fascia only:
+#   - no source file (.cpp) and no CMakeLists.txt but the examples' (share/fascia/examples) and the
+#     package's (lib/cmake); no tests/ folder;
+#   - include/ holds headers (.h) only, lib/cmake/ CMake files (.cmake) only, lib/pkgconfig/
+#     fascia.pc only, lib/ otherwise libraries (.so, .so.N..., .a) only, bin/ the programs only
+#     (fascia-run, fascia-bench);
+#   - share/fascia/ holds the scenes with their meshes, the docs, the examples and the README, and
+#     each of those is there;
+#   - nothing at the top of the prefix but bin/, include/, lib/ and share/.
 # Every offending path is printed, then the check fails.
 foreach(v BUILD_DIR WORK_DIR)
   if(NOT DEFINED ${v})
@@ -35,13 +39,21 @@ foreach(d ${dirs})
   endif()
 endforeach()
 foreach(f ${files})
-  if(f MATCHES "\\.(cpp|cc|cxx|c)$")
+  if(f MATCHES "^share/fascia/")
+    if(NOT f MATCHES "^share/fascia/(scenes|docs|examples)/" AND NOT f STREQUAL "share/fascia/README.md")
+      list(APPEND bad "${f}: share/fascia holds scenes/, docs/, examples/ and README.md only")
+    endif()
+  elseif(f MATCHES "\\.(cpp|cc|cxx|c)$")
     list(APPEND bad "${f}: a source file")
   elseif(f MATCHES "(^|/)CMakeLists\\.txt$" AND NOT f MATCHES "^lib/cmake/")
     list(APPEND bad "${f}: a CMakeLists.txt outside lib/cmake")
   elseif(f MATCHES "^include/")
     if(NOT f MATCHES "\\.h$")
       list(APPEND bad "${f}: not a header (include/ holds .h files only)")
+    endif()
+  elseif(f MATCHES "^lib/pkgconfig/")
+    if(NOT f STREQUAL "lib/pkgconfig/fascia.pc")
+      list(APPEND bad "${f}: lib/pkgconfig/ holds fascia.pc only")
     endif()
   elseif(f MATCHES "^lib/cmake/")
     if(NOT f MATCHES "\\.cmake$")
@@ -56,7 +68,15 @@ foreach(f ${files})
       list(APPEND bad "${f}: not one of the programs")
     endif()
   else()
-    list(APPEND bad "${f}: outside bin/, include/ and lib/")
+    list(APPEND bad "${f}: outside bin/, include/, lib/ and share/fascia/")
+  endif()
+endforeach()
+foreach(f share/fascia/README.md share/fascia/scenes/heml/abdomen.xml share/fascia/scenes/meshes/README.md
+          share/fascia/scenes/meshes/organ_2428.msh share/fascia/docs/design.md
+          share/fascia/examples/plugin/CMakeLists.txt share/fascia/examples/haptics/CMakeLists.txt
+          lib/pkgconfig/fascia.pc)
+  if(NOT f IN_LIST files)
+    list(APPEND bad "${f}: missing")
   endif()
 endforeach()
 
@@ -66,5 +86,5 @@ if(bad)
   list(JOIN bad "\n  " text)
   message(FATAL_ERROR "the installed tree (${n} files) holds ${nbad} thing(s) it must not:\n  ${text}")
 endif()
-message(STATUS "installed tree: ${n} files, headers, libraries, programs and the CMake package only")
+message(STATUS "installed tree: ${n} files, headers, libraries, programs, the packages and share/fascia only")
 file(REMOVE_RECURSE ${prefix})

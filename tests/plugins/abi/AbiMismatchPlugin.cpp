@@ -7,6 +7,7 @@ void registerNothing(fascia::core::Registry&) {}
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) const fascia::core::PluginInfo* fascia_plugin_info() {
-    static const fascia::core::PluginInfo info{999, "fascia.test.abi", "9.9.9", "built for another ABI", registerNothing};
+    static const fascia::core::PluginInfo info{999, "fascia.test.abi", "9.9.9", "built for another ABI", registerNothing,
+                                               FASCIA_THIS_BUILD_ABI};
     return &info;
 }

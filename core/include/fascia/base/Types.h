@@ -1,5 +1,7 @@
 #pragma once
 /// Value types shared by every plugin: links between components carry these.
+#include "fascia/base/Abi.h"  // first: it fixes Eigen's alignment for every user of the library
+
 #include <Eigen/Dense>  // Core alone declares cross() and determinant() without defining them
 #include <array>
 #include <map>

@@ -1,5 +1,6 @@
 #pragma once
 /// The one entry point a plugin exports. Use FASCIA_PLUGIN(...) in exactly one .cpp of a plugin.
+#include "fascia/base/Abi.h"
 #include "fascia/plugin/Registry.h"
 
 /// Bumped whenever a change to the core breaks binary compatibility with built plugins.
@@ -9,7 +10,8 @@
 /// 4: SourceLoc gained a byte offset (its size changed), Base::failOutput.
 /// 5: BaseObserver::records, BaseStepBackend::fetch, push and wait (new virtual functions),
 ///    MechanicalGroup::firstBadStep.
-#define FASCIA_ABI_VERSION 5
+/// 6: PluginInfo::build (how the plugin was compiled), EIGEN_MAX_ALIGN_BYTES fixed at 16.
+#define FASCIA_ABI_VERSION 6
 
 namespace fascia::core {
 
@@ -21,6 +23,9 @@ struct PluginInfo {
     const char* version;      ///< plugin version, e.g. "0.1.0"
     const char* description;  ///< one line
     void (*registerComponents)(Registry&);
+    /// How the plugin was compiled (fascia/base/Abi.h): the loader refuses another Eigen alignment
+    /// and warns about a plugin built without optimisation.
+    BuildAbi build;
 };
 
 } // namespace fascia::core
@@ -32,6 +37,6 @@ struct PluginInfo {
     extern "C" __attribute__((visibility("default"))) const ::fascia::core::PluginInfo*          \
     fascia_plugin_info() {                                                                        \
         static const ::fascia::core::PluginInfo info{FASCIA_ABI_VERSION, ID, VERSION, DESCRIPTION, \
-                                                     REGISTER_FN};                                \
+                                                     REGISTER_FN, FASCIA_THIS_BUILD_ABI};         \
         return &info;                                                                             \
     }
