@@ -2,8 +2,13 @@
 // mesh and prints one JSON object per case. See `fascia-bench --help`.
 #include "Bench.h"
 
+#include "fascia/base/CommandLine.h"
+#include "fascia/base/InputFile.h"
+
 #include <algorithm>
 #include <chrono>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -162,20 +167,6 @@ void runLoad(const std::string& scene, int repeat) {
     std::printf("{\"case\": \"load\", \"scene\": \"%s\", \"nodes\": %zu, \"elements\": %zu, \"load_ms\": %.2f, "
                 "\"load_ms_min\": %.2f, \"load_ms_max\": %.2f}\n",
                 scene.c_str(), nodes, elements, ms[ms.size() / 2], ms.front(), ms.back());
-}
-
-int parseInt(const char* v, const char* opt) {
-    if (!v) {
-        std::cerr << "fascia-bench: " << opt << " needs a value\n";
-        std::exit(1);
-    }
-    char* end;
-    long x = std::strtol(v, &end, 10);
-    if (*end || x <= 0) {
-        std::cerr << "fascia-bench: " << opt << " needs a positive integer\n";
-        std::exit(1);
-    }
-    return int(x);
 }
 
 /// Options that shape a suite rather than a case.
@@ -394,70 +385,107 @@ int runSuite(const std::string& name, const Case& c, const SuiteOptions& o) {
     return 0;
 }
 
-/// A comma-separated list of positive integers (--cubes).
-std::vector<int> parseList(const char* v, const char* opt) {
+/// Sizes of a cube (--cube, --cubes): GridMesh makes at most 5e7 cells (plugins/meshio/GridMesh.cpp).
+constexpr long kMaxCube = 368;
+/// A case's peak memory per cube cell: about 400 bytes per tetrahedron (the peak resident set per
+/// element of tools/peak-memory.sh at 2M tetrahedra, docs/performance.md: 233 to 368), six to a
+/// cell; a cell of hexahedra, with as many nodes, is counted as much.
+constexpr double kBytesPerCubeCell = 6 * 400;
+/// Per timed step of a case: its sample, the vector's growth and the quantiles' copy (Statistics.h);
+/// a line's cases hold theirs side by side.
+constexpr double kBytesPerSample = 24;
+/// The cases of a suite line, at most: the large suite's reference kernel and six force field cases.
+constexpr int kMaxCasesPerLine = 7;
+/// Per trivial component of --overhead: its XML line, its element, the component and its parameters
+/// (3.8 kB measured: the peak resident set of --overhead 40000 over that of --overhead 1), doubled.
+constexpr double kBytesPerComponent = 8192;
+
+/// What the command line asks for: a case (its options in c), a suite, --overhead, --load or --scene.
+struct Options {
+    Case c;
+    bool suite = false, printScene = false;
+    std::string suiteName = "heml", load;
+    int overhead = 0;
+    SuiteOptions suiteOptions;
+};
+
+/// --cubes: a comma-separated list of cube sizes.
+std::vector<int> parseCubes(CommandLine& cl) {
+    const std::string v = cl.text();
     std::vector<int> out;
-    std::string s = v ? v : "";
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, ',');) out.push_back(parseInt(item.c_str(), opt));
-    if (out.empty()) parseInt(nullptr, opt);
+    std::stringstream in(v);
+    for (std::string item; std::getline(in, item, ',');) {
+        char* end = nullptr;
+        const long n = item.empty() ? 0 : std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end || n < 1 || n > kMaxCube)
+            cl.fail("--cubes needs a list of integers in [1, " + std::to_string(kMaxCube) + "] such as 15,32, not '" + v + "'");
+        out.push_back(int(n));
+    }
     return out;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    Case c;
-    bool suite = false;
-    std::string suiteName = "heml";
-    int overhead = 0;
-    std::string load;
-    SuiteOptions options;
-    bool printScene = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-        auto str = [&](const char* opt) {
-            const char* v = next();
-            if (!v) {
-                std::cerr << "fascia-bench: " << opt << " needs a value\n";
-                std::exit(1);
-            }
-            return std::string(v);
-        };
-        if (a == "--help" || a == "-h") {
+/// Parses the command line; --help prints the help and exits 0, a bad command line exits 1.
+Options parseArgs(int argc, char** argv) {
+    Options o;
+    Case& c = o.c;
+    CommandLine cl("fascia-bench", argc, argv);
+    auto count = [&] { return int(cl.integer(1, INT_MAX)); };
+    while (cl.next()) {
+        if (cl.isHelp()) {
             std::cout << kHelp;
-            return 0;
-        } else if (a == "--forcefield") c.forcefield = str("--forcefield");
-        else if (a == "--material") c.material = str("--material");
-        else if (a == "--mesh") c.mesh = str("--mesh");
-        else if (a == "--cube") c.cube = parseInt(next(), "--cube");
-        else if (a == "--element") c.element = str("--element");
-        else if (a == "--steps") c.steps = parseInt(next(), "--steps");
-        else if (a == "--threads") c.threads = parseInt(next(), "--threads");
-        else if (a == "--repeat") c.repeat = parseInt(next(), "--repeat");
-        else if (a == "--viscous") c.viscous = true;
-        else if (a == "--precision") c.precision = str("--precision");
-        else if (a == "--node-buffers") c.nodeBuffers = str("--node-buffers");
-        else if (a == "--determinism") c.determinism = true;
-        else if (a == "--contend") c.contend = true;
-        else if (a == "--device") c.device = str("--device");
-        else if (a == "--cuda-block") c.block = parseInt(next(), "--cuda-block");
-        else if (a == "--cuda-forces") c.forceOrder = str("--cuda-forces");
-        else if (a == "--scene") printScene = true;
-        else if (a == "--reference") options.reference = true;
-        else if (a == "--cubes") options.cubes = parseList(next(), "--cubes");
-        else if (a == "--suite") {
-            suite = true;
-            if (i + 1 < argc && argv[i + 1][0] != '-') suiteName = argv[++i];
-        }
-        else if (a == "--overhead") overhead = parseInt(next(), "--overhead");
-        else if (a == "--load") load = str("--load");
-        else {
-            std::cerr << "fascia-bench: unknown option '" << a << "' (see --help)\n";
-            return 1;
-        }
+            std::exit(0);
+        } else if (cl.is("--forcefield")) c.forcefield = cl.text();
+        else if (cl.is("--material")) c.material = cl.text();
+        else if (cl.is("--mesh")) c.mesh = cl.path();
+        else if (cl.is("--cube")) c.cube = int(cl.integer(1, kMaxCube));
+        else if (cl.is("--element")) c.element = cl.text();
+        else if (cl.is("--steps")) c.steps = count();
+        else if (cl.is("--threads")) c.threads = int(cl.integer(1, 1024));
+        else if (cl.is("--repeat")) c.repeat = count();
+        else if (cl.is("--viscous")) c.viscous = true;
+        else if (cl.is("--precision")) c.precision = cl.text();
+        else if (cl.is("--node-buffers")) c.nodeBuffers = cl.text();
+        else if (cl.is("--determinism")) c.determinism = true;
+        else if (cl.is("--contend")) c.contend = true;
+        else if (cl.is("--device")) c.device = cl.text();
+        else if (cl.is("--cuda-block")) c.block = int(cl.integer(32, 1024));  // CudaStep's blockSize range
+        else if (cl.is("--cuda-forces")) c.forceOrder = cl.text();
+        else if (cl.is("--scene")) o.printScene = true;
+        else if (cl.is("--reference")) o.suiteOptions.reference = true;
+        else if (cl.is("--cubes")) o.suiteOptions.cubes = parseCubes(cl);
+        else if (cl.is("--suite")) {
+            o.suite = true;
+            if (const std::string name = cl.optionalValue(); !name.empty()) o.suiteName = name;
+        } else if (cl.is("--overhead")) o.overhead = count();
+        else if (cl.is("--load")) o.load = cl.path();
+        else if (cl.isOption()) cl.unknownOption();
+        else cl.fail("unexpected argument '" + cl.arg() + "' (a mesh is --mesh FILE, a scene --load SCENE.xml)");
     }
+    return o;
+}
+
+/// Refuses what would not fit in memory before anything is built: the cube's cells (a case and
+/// its reference or 1-thread copy; the large and buffers suites hold a line's cases side by side),
+/// the timed steps' samples, --overhead's components. Exits 1.
+void checkMemory(const Options& o) {
+    const auto cubeFits = [](const char* option, long cube, int copies) {
+        const double cells = double(cube) * double(cube) * double(cube), perCube = kBytesPerCubeCell * copies;
+        requireMemory("fascia-bench", option + (" " + std::to_string(cube)), cells, perCube, "cube cells",
+                      "at most " + (option + (" " + countText(std::cbrt(memoryBudgetBytes() / perCube)))));
+    };
+    if (!o.suite && o.load.empty() && o.overhead == 0 && o.c.mesh.empty() && o.c.cube > 0) cubeFits("--cube", o.c.cube, 2);
+    const int copies = o.suiteName == "large" ? kMaxCasesPerLine : o.suiteName == "buffers" ? 4 : 1;
+    for (int cube : o.suiteOptions.cubes) cubeFits("--cubes", cube, o.suite ? copies : 1);
+    const double perStep = kBytesPerSample * kMaxCasesPerLine;
+    requireMemory("fascia-bench", "--steps " + std::to_string(o.c.steps) + " --repeat " + std::to_string(o.c.repeat),
+                  double(o.c.steps) * o.c.repeat, perStep, "timed steps",
+                  "--steps times --repeat at most " + countText(memoryBudgetBytes() / perStep));
+    if (o.overhead > 0) requireMemory("fascia-bench", "--overhead " + std::to_string(o.overhead), o.overhead, kBytesPerComponent, "components");
+}
+
+/// The choices that do not go together or name nothing; 1 (with a message) for a bad one, else 0.
+int checkChoices(Options& o) {
+    Case& c = o.c;
     if (c.forcefield != "HEML" && c.forcefield != "TLED") {
         std::cerr << "fascia-bench: --forcefield is HEML or TLED\n";
         return 1;
@@ -479,7 +507,7 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --cuda-forces is element or node\n";
         return 1;
     }
-    if (!c.device.empty() && (c.reference || c.contend)) {
+    if (!c.device.empty() && (o.suiteOptions.reference || c.contend)) {
         std::cerr << "fascia-bench: --device " << c.device << " runs without --reference or --contend\n";
         return 1;
     }
@@ -487,25 +515,36 @@ int main(int argc, char** argv) {
         std::cerr << "fascia-bench: --node-buffers is auto, range or compact\n";
         return 1;
     }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options o = parseArgs(argc, argv);
+    Case& c = o.c;
+    if (const int rc = checkChoices(o)) return rc;
+    checkMemory(o);
     try {
-        if (overhead > 0) {
-            runOverhead(overhead, c.steps, c.repeat);
+        if (!c.mesh.empty()) requireRegularFile(c.mesh, "mesh file", kMaxMeshFileBytes, {c.mesh, 0});
+        if (o.overhead > 0) {
+            runOverhead(o.overhead, c.steps, c.repeat);
             return 0;
         }
-        if (!load.empty()) {
-            runLoad(load, c.repeat);
+        if (!o.load.empty()) {
+            runLoad(o.load, c.repeat);
             return 0;
         }
-        if (!suite) {
+        if (!o.suite) {
             if (c.mesh.empty() && c.cube == 0) c.cube = 16;
-            if (printScene) {
+            if (o.printScene) {
                 std::cout << sceneXml(c);
                 return 0;
             }
-            runLine({c}, options);
+            runLine({c}, o.suiteOptions);
             return 0;
         }
-        return runSuite(suiteName, c, options);
+        return runSuite(o.suiteName, c, o.suiteOptions);
     } catch (const Error& e) {
         std::cerr << e.what() << "\n";
         return e.kind() == ErrorKind::Input ? 2 : e.kind() == ErrorKind::Simulation ? 3 : 1;

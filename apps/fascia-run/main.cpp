@@ -1,10 +1,12 @@
 // fascia-run: runs a scene headless. See `fascia-run --help`.
+#include "fascia/base/CommandLine.h"
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
 #include "fascia/sim/Simulation.h"
 #include "fascia/sim/StepTeam.h"
 
 #include <omp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -86,27 +88,10 @@ constexpr long kMaxSteps = 1000000000000L;
 volatile std::sig_atomic_t g_interrupted = 0;
 void onSignal(int) { g_interrupted = 1; }
 
+/// A bad command line found after parsing it (CommandLine::fail's message): exits 1.
 [[noreturn]] void usage(const std::string& msg) {
     std::cerr << "fascia-run: " << msg << "\n(see fascia-run --help)\n";
     std::exit(1);
-}
-
-long parseCount(const std::string& opt, const char* v, long lo, long hi) {
-    if (!v || !*v) usage(opt + " needs a value");
-    char* end = nullptr;
-    errno = 0;
-    const long n = std::strtol(v, &end, 10);
-    if (*end || errno == ERANGE || n < lo || n > hi)
-        usage(opt + " needs an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], not '" + v + "'");
-    return n;
-}
-
-double parseNumber(const std::string& opt, const char* v) {
-    if (!v) usage(opt + " needs a value");
-    char* end = nullptr;
-    double d = std::strtod(v, &end);
-    if (!end || *end || !std::isfinite(d) || d <= 0) usage(opt + " needs a positive number, not '" + v + "'");
-    return d;
 }
 
 int listComponents() {
@@ -167,8 +152,12 @@ void progress(long done, long total, double wall) {
 }
 
 
-/// The folder of a checkpoint file must exist and be writable before the run starts.
+/// The folder of a checkpoint file must exist and be writable before the run starts, and the file
+/// must not be a folder (the rename over it would fail only at the end of the run).
 void checkCheckpointFolder(const std::string& file) {
+    struct stat st {};
+    if (::stat(file.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        throwOutputError({}, "--checkpoint '" + file + "' is a folder, not a file");
     const std::string::size_type slash = file.rfind('/');
     const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : file.substr(0, slash);
     if (access(dir.c_str(), W_OK | X_OK) != 0)
@@ -201,54 +190,45 @@ struct Options {
 /// Parses the command line; a bad one exits 1 (usage). Stops at --help (help set).
 Options parseArgs(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-        if (a == "--help" || a == "-h") {
+    CommandLine cl("fascia-run", argc, argv);
+    while (cl.next()) {
+        const std::string& a = cl.arg();
+        if (cl.isHelp()) {
             o.help = true;
             return o;
         } else if (a == "--steps") {
-            o.steps = parseCount(a, next(), 0, kMaxSteps);
+            o.steps = cl.integer(0, kMaxSteps);
         } else if (a == "--time") {
-            o.endTime = parseNumber(a, next());
+            o.endTime = cl.positive();
         } else if (a == "--dt") {
-            o.dt = parseNumber(a, next());
+            o.dt = cl.positive();
         } else if (a == "--threads") {
-            o.threads = int(parseCount(a, next(), 1, 1024));
+            o.threads = int(cl.integer(1, 1024));
         } else if (a == "--worker-cores") {
-            const char* v = next();
-            if (!v) usage("--worker-cores needs a list of cores, such as 1 or 1,3");
+            const std::string v = cl.text("a list of cores, such as 1 or 1,3");
             try {
                 o.workerCores = fascia::core::parseCoreList(v);
             } catch (const std::invalid_argument& e) {
                 usage(std::string("--worker-cores: ") + e.what());
             }
         } else if (a == "--output") {
-            const char* v = next();
-            if (!v) usage("--output needs a folder");
-            o.output = v;
+            o.output = cl.path("a folder");
         } else if (a == "--quiet" || a == "-q") {
             o.quiet = true;
         } else if (a == "--timers") {
             o.timers = true;
         } else if (a == "--checkpoint") {
-            const char* v = next();
-            if (!v || !*v) usage("--checkpoint needs a file");
-            o.checkpoint = v;
+            o.checkpoint = cl.path("a file");
         } else if (a == "--checkpoint-every") {
-            o.checkpointEvery = parseCount(a, next(), 1, kMaxSteps);
+            o.checkpointEvery = cl.integer(1, kMaxSteps);
         } else if (a == "--restart") {
-            const char* v = next();
-            if (!v || !*v) usage("--restart needs a checkpoint file");
-            o.restart = v;
+            o.restart = cl.path("a checkpoint file");
         } else if (a == "--list") {
             o.list = true;
         } else if (a == "--describe") {
-            const char* v = next();
-            if (!v) usage("--describe needs a component name");
-            o.describeName = v;
-        } else if (!a.empty() && a[0] == '-') {
-            usage("unknown option '" + a + "'");
+            o.describeName = cl.text("a component name");
+        } else if (cl.isOption()) {
+            cl.unknownOption();
         } else if (o.scene.empty()) {
             o.scene = a;
         } else {

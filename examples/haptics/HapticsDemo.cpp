@@ -14,6 +14,7 @@
 // seconds before each tick (0.5 ms by default: an idle virtual CPU wakes late from a longer sleep),
 // as haptic device loops do: the 99th-percentile interval went from 4.8-5.8 ms to 1.00 ms on a
 // loaded two-core machine, and stays at 1.00 ms on a quiet one (docs/performance.md, "Haptics").
+#include "fascia/base/CommandLine.h"
 #include "fascia/base/Error.h"
 #include "fascia/haptics/VirtualCoupling.h"
 #include "fascia/sim/Simulation.h"
@@ -25,7 +26,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <pthread.h>
 #include <sched.h>
 #include <iostream>
@@ -45,44 +45,53 @@ struct Options {
     bool realtime = true;    ///< ask for SCHED_FIFO for the device loop (falls back when not permitted)
 };
 
-[[noreturn]] void usage(const std::string& why) {
-    std::cerr << "fascia-haptics-demo: " << why << "\n"
-              << "usage: fascia-haptics-demo SCENE [--tool NAME] [--seconds S] [--rate HZ] [--stiffness N/m]\n"
-                 "                           [--damping Ns/m] [--filter S] [--depth M] [--output FILE.csv]\n"
-                 "                           [--spin S] [--no-realtime]\n";
-    std::exit(2);
-}
+const char* kHelp = R"(fascia-haptics-demo: a 1 kHz haptic device loop beside a simulation thread
 
+usage:
+  fascia-haptics-demo SCENE [--tool NAME] [--seconds S] [--rate HZ] [--stiffness N/m] [--damping Ns/m]
+                      [--filter S] [--depth M] [--output FILE.csv] [--spin S] [--no-realtime]
+  fascia-haptics-demo --help
+
+  --tool NAME       the scene's tool the device drives (default probe)
+  --seconds S       length of the run (default 5)
+  --rate HZ         device ticks per second (default 1000)
+  --stiffness N/m   the virtual coupling's spring (default 1000)
+  --damping Ns/m    its damper (default 1)
+  --filter S        the time constant of the force felt and of the tool's velocity (default 0.005)
+  --depth M         how far the device presses along -z (default 0.008)
+  --output FILE     one CSV row per device tick (default haptics_force.csv), written at the end
+  --spin S          the device loop spins the last S seconds before each tick (default 0.0005, at most 1)
+  --no-realtime     no SCHED_FIFO priority for the device loop
+
+Prints the summary: device_ticks, device_rate_hz, the intervals' median and 99th percentile, the
+simulation's update rate and real-time factors, the peak force. Exit codes: 0 success; 1 a bad
+command line or an output that cannot be written; 2 a bad scene or tool; 3 the simulation failed
+or a non-finite force was felt.
+)";
+
+/// Parses the command line; --help prints the help and exits 0, a bad command line exits 1.
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage(a + " needs a value");
-            return argv[++i];
-        };
-        auto number = [&](double lo) {
-            const std::string v = value();
-            char* end = nullptr;
-            const double x = std::strtod(v.c_str(), &end);
-            if (end == v.c_str() || *end || !std::isfinite(x) || x < lo) usage(a + " " + v + ": expected a number of at least " + std::to_string(lo));
-            return x;
-        };
-        if (a == "--tool") o.tool = value();
-        else if (a == "--output") o.output = value();
-        else if (a == "--seconds") o.seconds = number(0.001);
-        else if (a == "--rate") o.rate = number(1);
-        else if (a == "--stiffness") o.stiffness = number(1e-9);
-        else if (a == "--damping") o.damping = number(0);
-        else if (a == "--depth") o.depth = number(0);
-        else if (a == "--filter") o.filterTime = number(0);
-        else if (a == "--spin") o.spin = number(0);
-        else if (a == "--no-realtime") o.realtime = false;
-        else if (!a.empty() && a[0] == '-') usage("unknown option " + a);
-        else if (o.scene.empty()) o.scene = a;
-        else usage("one scene only");
+    fascia::core::CommandLine cl("fascia-haptics-demo", argc, argv);
+    while (cl.next()) {
+        if (cl.isHelp()) {
+            std::cout << kHelp;
+            std::exit(0);
+        } else if (cl.is("--tool")) o.tool = cl.text();
+        else if (cl.is("--output")) o.output = cl.path();
+        else if (cl.is("--seconds")) o.seconds = cl.number(0.001);
+        else if (cl.is("--rate")) o.rate = cl.number(1);
+        else if (cl.is("--stiffness")) o.stiffness = cl.number(1e-9);
+        else if (cl.is("--damping")) o.damping = cl.number(0);
+        else if (cl.is("--depth")) o.depth = cl.number(0);
+        else if (cl.is("--filter")) o.filterTime = cl.number(0);
+        else if (cl.is("--spin")) o.spin = cl.number(0, 1);  // (a clock duration of more would overflow)
+        else if (cl.is("--no-realtime")) o.realtime = false;
+        else if (cl.isOption()) cl.unknownOption();
+        else if (o.scene.empty()) o.scene = cl.arg();
+        else cl.fail("one scene at a time ('" + o.scene + "' and '" + cl.arg() + "')");
     }
-    if (o.scene.empty()) usage("no scene");
+    if (o.scene.empty()) cl.fail("no scene given");
     return o;
 }
 
@@ -177,15 +186,31 @@ double percentile(std::vector<double> v, double p) {
 
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    // a row per device tick is kept in memory (the device loop writes no file): refuse a run whose
+    // rows would not fit before anything starts
+    const double tickCount = std::max(1.0, std::round(o.seconds * o.rate));
+    fascia::core::requireMemory("fascia-haptics-demo",
+                                "--seconds " + fascia::core::CommandLine::realText(o.seconds) + " at --rate " +
+                                    fascia::core::CommandLine::realText(o.rate),
+                                tickCount, sizeof(Tick) + sizeof(double), "device ticks");
     std::unique_ptr<fascia::core::Simulation> sim;
     fascia::core::BaseTool* tool = nullptr;
+    try {
+        fascia::core::requireOutputFile(o.output);
+    } catch (const fascia::core::Error& e) {
+        std::cerr << e.what() << "\n";
+        return 1;
+    }
     try {
         sim = fascia::core::Simulation::fromFile(o.scene);
         tool = &sim->tool(o.tool);
         sim->start();
     } catch (const fascia::core::Error& e) {
         std::cerr << e.what() << "\n";
-        return 2;
+        return e.kind() == fascia::core::ErrorKind::Input ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::cerr << "fascia-haptics-demo: " << e.what() << "\n";
+        return 1;
     }
     fascia::haptics::VirtualCoupling coupling(o.stiffness, o.damping, o.filterTime);
     const Vec3 p0 = tool->pose().position;
@@ -197,7 +222,7 @@ int main(int argc, char** argv) {
     // the device loop: a tick every 1/rate s on the steady clock, on this thread at real-time priority
     const std::string policy = raisePriority(o.realtime);
     const auto spin = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.spin));
-    const long ticks = std::max(1L, long(std::llround(o.seconds * o.rate)));
+    const long ticks = long(tickCount);
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.rate));
     std::vector<Tick> log;
     log.reserve(size_t(ticks));
@@ -225,19 +250,23 @@ int main(int argc, char** argv) {
     }
     sim->finish();
 
-    std::ofstream csv(o.output);
-    csv.precision(9);
-    csv << "time_s,interval_ms,force_x,force_y,force_z,device_x,device_y,device_z,tool_updates\n";
+    // written whole or not at all (FILE.tmp, renamed at the end)
     std::vector<double> intervals;
     bool finite = true;
-    for (const Tick& k : log) {
-        csv << k.time << "," << 1e3 * k.interval << "," << k.force[0] << "," << k.force[1] << "," << k.force[2] << "," << k.device[0]
-            << "," << k.device[1] << "," << k.device[2] << "," << k.toolSequence << "\n";
-        intervals.push_back(1e3 * k.interval);
-        finite = finite && k.force.allFinite();
-    }
-    if (!csv) {
-        std::cerr << "fascia-haptics-demo: cannot write '" << o.output << "'\n";
+    try {
+        fascia::core::OutputFile file(o.output);
+        std::ostream& csv = file.stream();
+        csv.precision(9);
+        csv << "time_s,interval_ms,force_x,force_y,force_z,device_x,device_y,device_z,tool_updates\n";
+        for (const Tick& k : log) {
+            csv << k.time << "," << 1e3 * k.interval << "," << k.force[0] << "," << k.force[1] << "," << k.force[2] << ","
+                << k.device[0] << "," << k.device[1] << "," << k.device[2] << "," << k.toolSequence << "\n";
+            intervals.push_back(1e3 * k.interval);
+            finite = finite && k.force.allFinite();
+        }
+        file.commit();
+    } catch (const fascia::core::Error& e) {
+        std::cerr << e.what() << "\n";
         return 1;
     }
     const double under = double(std::count_if(intervals.begin(), intervals.end(), [](double ms) { return ms < 1.5; })) / double(intervals.size());

@@ -1,6 +1,6 @@
 #pragma once
 /// What the fascia-run tests share: a temporary folder holding one test's scenes and output, and a
-/// way to run fascia-run (the FASCIA_RUN the test is compiled with) in it.
+/// way to run fascia-run (the FASCIA_RUN the test is compiled with), or another program, in it.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -61,11 +61,12 @@ public:
         std::string firstErrLine() const { return err.substr(0, err.find('\n')); }
     };
 
-    /// Runs fascia-run in dir() with args (shell words) and optional environment assignments; its
-    /// output goes to hidden files of dir(); a run still going after 60 s is killed (exit code 124).
-    Result run(const std::string& args, const std::string& env = "") const {
+    /// Runs fascia-run (or `program`) in dir() with args (shell words) and optional environment
+    /// assignments; its output goes to hidden files of dir(); a run still going after 60 s is killed
+    /// (exit code 124).
+    Result run(const std::string& args, const std::string& env = "", const std::string& program = FASCIA_RUN) const {
         const std::string out = (m_dir / ".stdout").string(), err = (m_dir / ".stderr").string();
-        const std::string cmd = "cd '" + m_dir.string() + "' && " + env + " timeout -s KILL 60 '" FASCIA_RUN "' " + args +
+        const std::string cmd = "cd '" + m_dir.string() + "' && " + env + " timeout -s KILL 60 '" + program + "' " + args +
                                 " >'" + out + "' 2>'" + err + "' </dev/null";
         const int status = std::system(cmd.c_str());
         Result r;

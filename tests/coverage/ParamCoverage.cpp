@@ -11,10 +11,13 @@
 // the component itself) when a test or a scene link asks for it by name. --tests names the ctest
 // entries of a full run: when some did not run (ctest -R ...), the check is skipped, saying so.
 // See tests/coverage/README.md.
+#include "fascia/base/CommandLine.h"
+#include "fascia/base/InputFile.h"
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -173,33 +176,56 @@ int check(const std::string& logPath, const std::string& allowPath, const std::s
     return problems.empty() ? 0 : 1;
 }
 
+const char* kHelp = R"(fascia-param-coverage: did the tests exercise every registered component parameter?
+
+usage:
+  fascia-param-coverage --list
+  fascia-param-coverage --log LOG --allow ALLOWLIST [--tests NAMES]
+  fascia-param-coverage --help
+
+  --list           print every parameter of every registered component ("Component.parameter",
+                   "output" after those the component computes)
+  --log LOG        the parameter log of a test run (FASCIA_PARAM_LOG, fascia/base/ParamLog.h)
+  --allow FILE     the allow-list (tests/coverage/ParamAllowList.txt)
+  --tests NAMES    the ctest entries of a full run, one a line: when some did not run, the check is
+                   skipped, saying so
+
+exit codes: 0 every parameter exercised or allowed (or a skipped partial run); 1 a bad command line
+or parameters not exercised; 2 a file that cannot be read (missing, a folder)
+)";
+
 } // namespace
 
 int main(int argc, char** argv) {
     std::string logPath, allowPath, testsFile;
     bool list = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : std::string(); };
-        if (a == "--list") list = true;
-        else if (a == "--log") logPath = next();
-        else if (a == "--allow") allowPath = next();
-        else if (a == "--tests") testsFile = next();
-        else {
-            std::cerr << "fascia-param-coverage: unknown argument '" << a << "'\n";
-            return 1;
-        }
+    CommandLine cl("fascia-param-coverage", argc, argv);
+    while (cl.next()) {
+        if (cl.isHelp()) {
+            std::cout << kHelp;
+            return 0;
+        } else if (cl.is("--list")) list = true;
+        else if (cl.is("--log")) logPath = cl.path();
+        else if (cl.is("--allow")) allowPath = cl.path();
+        else if (cl.is("--tests")) testsFile = cl.path();
+        else if (cl.isOption()) cl.unknownOption();
+        else cl.fail("unexpected argument '" + cl.arg() + "'");
     }
+    if (!list && (logPath.empty() || allowPath.empty())) cl.fail("give --list, or --log LOG --allow ALLOWLIST [--tests NAMES]");
     try {
         if (list) {
             for (const Declared& d : registeredParams()) std::cout << d.key() << (d.output ? " output" : "") << "\n";
             return 0;
         }
-        if (logPath.empty() || allowPath.empty()) {
-            std::cerr << "fascia-param-coverage: give --list, or --log LOG --allow ALLOWLIST [--tests NAMES]\n";
-            return 1;
-        }
+        // (read whole, line by line: each at most half the memory)
+        const auto limit = std::uintmax_t(memoryBudgetBytes() / 2);
+        requireRegularFile(logPath, "parameter log", limit, {logPath, 0});
+        requireRegularFile(allowPath, "list of allowed parameters", limit, {allowPath, 0});
+        if (!testsFile.empty()) requireRegularFile(testsFile, "list of tests", limit, {testsFile, 0});
         return check(logPath, allowPath, testsFile);
+    } catch (const Error& e) {
+        std::cerr << e.what() << "\n";
+        return e.kind() == ErrorKind::Input ? 2 : 1;
     } catch (const std::exception& e) {
         std::cerr << "fascia-param-coverage: " << e.what() << "\n";
         return 1;

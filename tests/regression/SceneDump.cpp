@@ -2,25 +2,24 @@
 // velocities as hex floats (%a), so that a refactoring of the force fields can prove it changed no
 // result: run it before and after, then compare the two files (--compare reports, per case and
 // quantity, whether they are bitwise equal and the max relative difference).
-//
-//   fascia-dump [--steps N] [--every K] [--case NAME] [--list] OUT.txt
-//   fascia-dump --compare BEFORE.txt AFTER.txt
-//   fascia-dump --check-threads [--case NAME]    (1 and 2 threads must agree bitwise)
-//   fascia-dump [--steps N] [--every K] --scene FILE [--scene FILE ...] OUT.txt
-//       (those scene files instead of the cases, each started from the smooth deformation at half
-//       the critical time step: for a plugin's force field, with FASCIA_PLUGIN_PATH set)
+// See `fascia-dump --help` (kHelp below) for the command line; tests/regression/CMakeLists.txt runs it.
 //
 // Cases: every scene under scenes/ (by its path), and inline variants covering HEML and TLED on
 // tetrahedra and hexahedra, every built-in law, mass-spring, fibres per element and per group,
 // materials per mesh group and Prony series, each with 1 and 2 threads.
+#include "fascia/base/CommandLine.h"
 #include "fascia/base/Error.h"
+#include "fascia/base/InputFile.h"
 #include "fascia/sim/Simulation.h"
 
 #include <omp.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -211,71 +210,87 @@ void putPositions(std::ostream& o, const std::string& label, const Positions& p)
     put(o, label, p.empty() ? nullptr : p.data()->data(), 3 * p.size());
 }
 
-/// Runs one case and writes its records.
-void runCase(const Case& c, int steps, int every, const fs::path& tmp, std::ostream& o) {
+/// A case loaded and ready to record: its simulation, its states and its force fields.
+struct Running {
+    std::unique_ptr<Simulation> sim;
+    std::vector<BaseForceField*> ffs;
+    std::vector<BaseMechanicalState*> states;
+    int threads = 2;
+    /// Runs `steps` more steps on the case's threads (a thread count is per process: set it each time,
+    /// since --check-threads steps a 1-thread and a 2-thread case in turn).
+    void advance(long steps) {
+        omp_set_num_threads(threads);
+        sim->run(steps);
+    }
+};
+
+/// Loads a case (on its threads, which its force fields' blocks depend on) and deforms it if asked.
+Running start(const Case& c, const fs::path& tmp) {
     omp_set_num_threads(c.threads);
     LoadOptions opt;
     opt.outputDir = (tmp / "out").string();
     fs::create_directories(opt.outputDir);
-    auto sim = c.file.empty() ? Simulation::fromString(c.xml, c.name, tmp.string(), opt) : Simulation::fromFile(c.file, opt);
-    std::vector<BaseForceField*> ffs = sim->root().findAllInSubtree<BaseForceField>();
-    std::vector<BaseMechanicalState*> states = sim->root().findAllInSubtree<BaseMechanicalState>();
+    Running r;
+    r.threads = c.threads;
+    r.sim = c.file.empty() ? Simulation::fromString(c.xml, c.name, tmp.string(), opt) : Simulation::fromFile(c.file, opt);
+    r.ffs = r.sim->root().findAllInSubtree<BaseForceField>();
+    r.states = r.sim->root().findAllInSubtree<BaseMechanicalState>();
     if (c.deform) {
-        const double crit = sim->criticalTimeStep();
-        if (std::isfinite(crit)) sim->setDt(0.5 * crit);
-        for (auto* s : states) deform(*s);
+        const double crit = r.sim->criticalTimeStep();
+        if (std::isfinite(crit)) r.sim->setDt(0.5 * crit);
+        for (auto* s : r.states) deform(*s);
     }
-    o << "case " << c.name << "\n";
-    for (int s = 0; s <= steps; s += every) {
-        if (s > 0) sim->run(every);
-        o << "step " << s << "\n";
-        for (size_t i = 0; i < states.size(); ++i) {
-            putPositions(o, "x" + std::to_string(i), states[i]->x());
-            putPositions(o, "v" + std::to_string(i), states[i]->v());
-            putPositions(o, "f" + std::to_string(i), states[i]->f());
+    return r;
+}
+
+/// Writes the records of step s: positions, velocities and forces of every state, then each force
+/// field's energy (its stable time step at step 0) and cell data.
+void record(Running& r, long s, std::ostream& o) {
+    o << "step " << s << "\n";
+    for (size_t i = 0; i < r.states.size(); ++i) {
+        putPositions(o, "x" + std::to_string(i), r.states[i]->x());
+        putPositions(o, "v" + std::to_string(i), r.states[i]->v());
+        putPositions(o, "f" + std::to_string(i), r.states[i]->f());
+    }
+    for (size_t i = 0; i < r.ffs.size(); ++i) {
+        BaseForceField& ff = *r.ffs[i];
+        auto* st = ff.node()->findInContext<BaseMechanicalState>();
+        if (!st) continue;
+        const std::string p = "ff" + std::to_string(i) + ".";
+        const double E = ff.potentialEnergy(*st);
+        put(o, p + "energy", &E, 1);
+        if (s == 0) {
+            const double dt = ff.stableTimeStep(*st);
+            put(o, p + "stableTimeStep", &dt, 1);
         }
-        for (size_t i = 0; i < ffs.size(); ++i) {
-            BaseForceField& ff = *ffs[i];
-            auto* st = ff.node()->findInContext<BaseMechanicalState>();
-            if (!st) continue;
-            const std::string p = "ff" + std::to_string(i) + ".";
-            const double E = ff.potentialEnergy(*st);
-            put(o, p + "energy", &E, 1);
-            if (s == 0) {
-                const double dt = ff.stableTimeStep(*st);
-                put(o, p + "stableTimeStep", &dt, 1);
-            }
-            std::vector<CellField> cells;
-            ff.cellData(*st, cells);
-            for (auto& cf : cells) put(o, p + cf.name, cf.values.data(), cf.values.size());
-        }
+        std::vector<CellField> cells;
+        ff.cellData(*st, cells);
+        for (auto& cf : cells) put(o, p + cf.name, cf.values.data(), cf.values.size());
     }
 }
 
-struct Record {
-    std::vector<double> v;
-};
 using CaseData = std::map<std::string, std::vector<double>>;  // "step label" -> values
 
+/// A dump file, case by case. A line whose count of values is not what it holds (a truncated or
+/// edited file) is a located input error: the count is never trusted for an allocation.
 std::map<std::string, CaseData> readDump(const std::string& path) {
     std::map<std::string, CaseData> out;
     std::ifstream in(path);
-    if (!in) throw std::runtime_error("cannot read " + path);
+    if (!in) throwInputError({path, 0}, "cannot read '" + path + "'");
     std::string line, cs, step;
-    while (std::getline(in, line)) {
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         std::istringstream is(line);
         std::string label;
-        is >> label;
+        if (!(is >> label)) continue;
         if (label == "case") { is >> cs; continue; }
         if (label == "step") { is >> step; continue; }
         size_t n = 0;
-        is >> n;
-        std::vector<double> v(n);
-        for (size_t i = 0; i < n; ++i) {
-            std::string t;
-            is >> t;
-            v[i] = std::strtod(t.c_str(), nullptr);
-        }
+        std::vector<double> v;
+        const bool counted = bool(is >> n);
+        for (std::string t; is >> t;) v.push_back(std::strtod(t.c_str(), nullptr));
+        if (!counted || v.size() != n)
+            throwInputError({path, lineNo}, "'" + label + "' announces " + (counted ? std::to_string(n) : "no number of") +
+                                                " values and holds " + std::to_string(v.size()) + ": not a whole fascia-dump file");
         out[cs][step + " " + label] = std::move(v);
     }
     return out;
@@ -334,66 +349,180 @@ int compare(const std::string& a, const std::string& b) {
     return bad ? 1 : 0;
 }
 
+const char* kHelp = R"(fascia-dump: records of scenes as hex floats, to compare before and after a change
+
+usage:
+  fascia-dump [--steps N] [--every K] [--case NAME] OUT.txt
+  fascia-dump [--steps N] [--every K] --scene FILE [--scene FILE ...] OUT.txt
+  fascia-dump --compare BEFORE.txt AFTER.txt
+  fascia-dump --check-threads [--steps N] [--every K] [--case NAME]
+  fascia-dump --list [--scene FILE ...]
+  fascia-dump --help
+
+options:
+  --steps N        steps per case (default 30)
+  --every K        a record every K steps (default 10)
+  --case NAME      only the cases whose name holds NAME
+  --scene FILE     this scene file instead of the cases, started from the smooth deformation at half
+                   the critical time step (a plugin's force field: set FASCIA_PLUGIN_PATH)
+  --compare A B    per case and quantity: bitwise equal or not, and the max relative difference
+                   (exit 1 when one is over 1e-12)
+  --check-threads  the inline cases on 1 and 2 threads must agree bitwise
+  --list           print the names of the cases
+
+Cases: every scene under scenes/ (by its path), and inline variants of HEML and TLED (each with 1
+and 2 threads). OUT.txt is written whole or not at all (OUT.txt.tmp, renamed at the end).
+exit codes: 0 success; 1 a bad command line, an output that cannot be written, no case, a
+difference (--compare, --check-threads); 2 a bad input file (a scene, a dump); 3 a failed run
+)";
+
+constexpr long kMaxSteps = INT_MAX;
+
+struct Options {
+    long steps = 30, every = 10;
+    std::string only, outFile, compareA, compareB;
+    std::vector<std::string> sceneFiles;
+    bool list = false, checkThreads = false;
+};
+
+/// Parses the command line; --help prints the help and exits 0, a bad command line exits 1.
+Options parseArgs(int argc, char** argv) {
+    Options o;
+    CommandLine cl("fascia-dump", argc, argv);
+    while (cl.next()) {
+        if (cl.isHelp()) {
+            std::cout << kHelp;
+            std::exit(0);
+        } else if (cl.is("--compare")) {
+            o.compareA = cl.path("two dump files: --compare BEFORE.txt AFTER.txt");
+            o.compareB = cl.path("two dump files: --compare BEFORE.txt AFTER.txt");
+        } else if (cl.is("--steps")) o.steps = cl.integer(0, kMaxSteps);
+        else if (cl.is("--every")) o.every = cl.integer(1, kMaxSteps);
+        else if (cl.is("--case")) o.only = cl.text();
+        else if (cl.is("--scene")) o.sceneFiles.push_back(cl.path());
+        else if (cl.is("--list")) o.list = true;
+        else if (cl.is("--check-threads")) o.checkThreads = true;
+        else if (cl.isOption()) cl.unknownOption();
+        else if (o.outFile.empty()) o.outFile = cl.arg();
+        else cl.fail("one output file at a time ('" + o.outFile + "' and '" + cl.arg() + "')");
+    }
+    if (o.compareA.empty() && !o.list && !o.checkThreads && o.outFile.empty())
+        cl.fail("no output file: give OUT.txt (or --compare, --check-threads, --list)");
+    return o;
+}
+
+/// Fails unless `bytes` more fit in the free space of the output file's folder (statvfs): a dump of
+/// enormous --steps is refused after the first record of its first case, not when the disk is full.
+void checkDisk(const Options& o, const std::string& caseName, double records, double bytesEach) {
+    const fs::path dir = fs::absolute(o.outFile).parent_path();
+    struct statvfs fsInfo {};
+    if (::statvfs(dir.c_str(), &fsInfo) != 0) return;
+    const double space = double(fsInfo.f_bavail) * double(fsInfo.f_frsize);
+    if (records * bytesEach <= space) return;
+    throw std::runtime_error("--steps " + std::to_string(o.steps) + " --every " + std::to_string(o.every) +
+                             ": the records of case '" + caseName + "' do not fit on the disk\n(" +
+                             CommandLine::realText(records) + " records of about " + bytesText(bytesEach) + " need " +
+                             bytesText(records * bytesEach) + "; '" + dir.string() + "' has " + bytesText(space) + " free)");
+}
+
+/// The cases' records into OUT.txt, written whole or not at all; 1 when no case matches --case.
+int dumpCases(const std::vector<Case>& cases, const Options& o, const fs::path& tmp) {
+    OutputFile out(o.outFile);
+    size_t ran = 0;
+    for (auto& c : cases) {
+        if (!o.only.empty() && c.name.find(o.only) == std::string::npos) continue;
+        Running r = start(c, tmp);
+        std::ostringstream first;
+        first << "case " << c.name << "\n";
+        record(r, 0, first);
+        checkDisk(o, c.name, double(o.steps / o.every), double(first.str().size()));
+        out.stream() << first.str();
+        for (long s = o.every; s <= o.steps && out.good(); s += o.every) {
+            r.advance(o.every);
+            record(r, s, out.stream());
+        }
+        ++ran;
+    }
+    if (ran == 0) {
+        std::fprintf(stderr, "fascia-dump: no case matches '%s' (see fascia-dump --list)\n", o.only.c_str());
+        return 1;
+    }
+    out.commit();
+    std::printf("fascia-dump: %zu cases, %ld steps each, written to %s\n", ran, o.steps, o.outFile.c_str());
+    return 0;
+}
+
+/// --check-threads: each inline case's 1-thread and 2-thread runs (_t1 and _t2, one after the other in
+/// the list) side by side, record by record: they must write the same bytes.
+int checkThreads(const std::vector<Case>& cases, const Options& o, const fs::path& tmp) {
+    std::map<std::string, bool> same;  // by the name without _t1 / _t2
+    for (size_t i = 0; i + 1 < cases.size(); ++i) {
+        const Case &a = cases[i], &b = cases[i + 1];
+        const std::string base = a.name.substr(0, a.name.size() - 3);
+        if (!a.file.empty() || a.threads != 1 || b.name != base + "_t2") continue;
+        if (!o.only.empty() && a.name.find(o.only) == std::string::npos && b.name.find(o.only) == std::string::npos) continue;
+        Running ra = start(a, tmp), rb = start(b, tmp);
+        bool equal = true;
+        for (long s = 0; s <= o.steps && equal; s += o.every) {
+            if (s > 0) ra.advance(o.every), rb.advance(o.every);
+            std::ostringstream ta, tb;
+            record(ra, s, ta);
+            record(rb, s, tb);
+            equal = ta.str() == tb.str();
+        }
+        same[base] = equal;
+    }
+    int rc = 0;
+    for (auto& [base, equal] : same) {
+        std::printf("%-40s 1 vs 2 threads: %s\n", base.c_str(), equal ? "bitwise identical" : "DIFFERENT");
+        if (!equal) rc = 1;
+    }
+    if (same.empty()) {
+        std::fprintf(stderr, "fascia-dump: no case matches '%s'\n", o.only.c_str());
+        rc = 1;
+    }
+    return rc;
+}
+
+/// The input files, checked before anything runs or is written: the scenes (as fascia-run reads
+/// them) and the two dumps of --compare, which are read whole (at most half the memory each).
+void checkInputs(const Options& o) {
+    for (const std::string& f : o.sceneFiles) requireRegularFile(f, "scene file", kMaxSceneFileBytes, {f, 1});
+    for (const std::string& f : {o.compareA, o.compareB})
+        if (!f.empty()) requireRegularFile(f, "dump file", std::uintmax_t(memoryBudgetBytes() / 2), {f, 0});
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    int steps = 30, every = 10;
-    std::string only, outFile;
-    std::vector<std::string> sceneFiles;
-    bool list = false, checkThreads = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--compare" && i + 2 < argc) return compare(argv[i + 1], argv[i + 2]);
-        if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
-        else if (a == "--every" && i + 1 < argc) every = std::atoi(argv[++i]);
-        else if (a == "--case" && i + 1 < argc) only = argv[++i];
-        else if (a == "--scene" && i + 1 < argc) sceneFiles.push_back(argv[++i]);
-        else if (a == "--list") list = true;
-        else if (a == "--check-threads") checkThreads = true;
-        else outFile = a;
-    }
-    const fs::path tmp = fs::temp_directory_path() / ("fascia-dump-" + std::to_string(::getpid()));
-    fs::create_directories(tmp);
+    const Options o = parseArgs(argc, argv);
+    fs::path tmp;
     int rc = 0;
     try {
+        checkInputs(o);
+        if (!o.compareA.empty()) return compare(o.compareA, o.compareB);
+        if (!o.list && !o.checkThreads) requireOutputFile(o.outFile);
+        tmp = fs::temp_directory_path() / ("fascia-dump-" + std::to_string(::getpid()));
+        fs::create_directories(tmp);
         std::vector<Case> cases;
-        for (const std::string& f : sceneFiles) cases.push_back({f, f, "", 2, true});
-        if (sceneFiles.empty()) cases = allCases(tmp);
-        if (list) {
+        for (const std::string& f : o.sceneFiles) cases.push_back({f, f, "", 2, true});
+        if (o.sceneFiles.empty()) cases = allCases(tmp);
+        if (o.list)
             for (auto& c : cases) std::cout << c.name << "\n";
-        } else if (checkThreads) {
-            // the inline cases in pairs (_t1, _t2): all but positions' origin the same, bitwise
-            std::map<std::string, std::string> byBase[2];
-            for (auto& c : cases) {
-                if (c.file.size() || (!only.empty() && c.name.find(only) == std::string::npos)) continue;
-                std::ostringstream o;
-                Case d = c;
-                d.name = "x";
-                runCase(d, steps, every, tmp, o);
-                byBase[c.threads - 1][c.name.substr(0, c.name.size() - 3)] = o.str();
-            }
-            for (auto& [base, text] : byBase[0]) {
-                const bool same = byBase[1][base] == text;
-                std::printf("%-40s 1 vs 2 threads: %s\n", base.c_str(), same ? "bitwise identical" : "DIFFERENT");
-                if (!same) rc = 1;
-            }
-            if (byBase[0].empty()) { std::fprintf(stderr, "no case matches '%s'\n", only.c_str()); rc = 1; }
-        } else {
-            if (outFile.empty()) { std::fprintf(stderr, "usage: fascia-dump [--steps N] [--every K] [--case NAME] OUT.txt | --compare A B\n"); return 2; }
-            std::ofstream o(outFile);
-            size_t ran = 0;
-            for (auto& c : cases) {
-                if (!only.empty() && c.name.find(only) == std::string::npos) continue;
-                runCase(c, steps, every, tmp, o);
-                ++ran;
-            }
-            std::printf("fascia-dump: %zu cases, %d steps each, written to %s\n", ran, steps, outFile.c_str());
-            if (ran == 0) rc = 1;
-        }
+        else if (o.checkThreads)
+            rc = checkThreads(cases, o, tmp);
+        else
+            rc = dumpCases(cases, o, tmp);
+    } catch (const Error& e) {
+        std::cout.flush();
+        std::fprintf(stderr, "%s\n", e.what());
+        rc = e.kind() == ErrorKind::Input ? 2 : e.kind() == ErrorKind::Simulation ? 3 : 1;
     } catch (const std::exception& e) {
+        std::cout.flush();
         std::fprintf(stderr, "fascia-dump: %s\n", e.what());
         rc = 1;
     }
-    fs::remove_all(tmp);
+    std::error_code ec;
+    if (!tmp.empty()) fs::remove_all(tmp, ec);
     return rc;
 }
