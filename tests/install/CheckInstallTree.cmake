@@ -11,6 +11,7 @@
 #     each of those is there;
 #   - nothing at the top of the prefix but bin/, include/, lib/ and share/.
 # Every offending path is printed, then the check fails.
+cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
 foreach(v BUILD_DIR WORK_DIR)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "CheckInstallTree.cmake: -D${v}=... is required")

@@ -10,7 +10,8 @@
 /// 4: SourceLoc gained a byte offset (its size changed), Base::failOutput.
 /// 5: BaseObserver::records, BaseStepBackend::fetch, push and wait (new virtual functions),
 ///    MechanicalGroup::firstBadStep.
-/// 6: PluginInfo::build (how the plugin was compiled), EIGEN_MAX_ALIGN_BYTES fixed at 16.
+/// 6: PluginInfo::build (how the plugin was compiled), EIGEN_MAX_ALIGN_BYTES fixed at 16, core::Error
+///    holds the further errors of a scene (more(), unshown(): its size changed).
 #define FASCIA_ABI_VERSION 6
 
 namespace fascia::core {
