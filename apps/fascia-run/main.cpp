@@ -365,7 +365,11 @@ int main(int argc, char** argv) {
         return finishRun(*sim, o, r);
     } catch (const Error& e) {
         std::cout.flush();
-        std::cerr << std::string(e.what()) + "\n";
+        // every error the load found (Error::more), then, when there are several, how many, as a compiler does
+        std::string text = std::string(e.what()) + "\n";
+        if (e.count() > 1)
+            text += (o.scene.empty() ? std::string("fascia-run") : o.scene) + ": " + std::to_string(e.count()) + " errors\n";
+        std::cerr << text;
         switch (e.kind()) {
         case ErrorKind::Input: return 2;
         case ErrorKind::Simulation:

@@ -23,6 +23,29 @@ Error::Error(ErrorKind kind, SourceLoc loc, std::string message, std::vector<std
     : std::runtime_error(format(loc, message, notes)), m_kind(kind), m_loc(std::move(loc)),
       m_message(std::move(message)), m_notes(std::move(notes)) {}
 
+namespace {
+/// The text of an error standing for several: each one's own text, one after the other, then the
+/// count of those not shown.
+std::string joined(const Error& first, const std::vector<Error>& more, size_t unshown, const SourceLoc& where) {
+    std::string out = first.what();
+    for (const Error& e : more) out += std::string("\n") + e.what();
+    if (unshown > 0)
+        out += "\n" + (where.empty() ? std::string() : where.str() + ": ") + "note: " + std::to_string(unshown) + " more " +
+               (unshown == 1 ? "error" : "errors") + " not shown";
+    return out;
+}
+} // namespace
+
+Error::Error(const Error& first, std::vector<Error> more, size_t unshown, const SourceLoc& where)
+    : std::runtime_error(joined(first, more, unshown, where)), m_kind(first.m_kind), m_loc(first.m_loc),
+      m_message(first.m_message), m_notes(first.m_notes),
+      m_more(more.empty() ? nullptr : std::make_shared<const std::vector<Error>>(std::move(more))), m_unshown(unshown) {}
+
+const std::vector<Error>& Error::more() const {
+    static const std::vector<Error> none;
+    return m_more ? *m_more : none;
+}
+
 void throwInputError(const SourceLoc& loc, const std::string& message, std::vector<std::string> notes) {
     throw Error(ErrorKind::Input, loc, message, std::move(notes));
 }

@@ -1,4 +1,5 @@
 #include "fascia/scene/SceneLoader.h"
+#include "fascia/base/ErrorList.h"
 #include "fascia/base/InputFile.h"
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
@@ -106,96 +107,151 @@ void collectRequiredPlugins(const ElementSpec& s, std::vector<const ElementSpec*
     for (auto& c : s.children) collectRequiredPlugins(c, out);
 }
 
-void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks) {
-    std::set<std::string> seen;
-    for (auto& [key, value] : spec.attributes) {
-        // not findParam: an attribute sets the parameter, which read() records (ParamLog.h)
-        BaseParam* p = nullptr;
-        for (BaseParam* q : obj.params())
-            if (q->name() == key) p = q;
-        if (!p) {
-            std::vector<std::string> notes;
-            auto close = closestMatches(key, obj.paramNames());
-            if (!close.empty()) {
-                std::string s = "did you mean ";
-                for (size_t i = 0; i < close.size(); ++i) s += (i ? " or '" : "'") + close[i] + "'";
-                notes.push_back(s + "?");
-            } else {
-                std::string all;
-                for (auto& n : obj.paramNames()) all += (all.empty() ? "" : ", ") + n;
-                notes.push_back(obj.className() + " takes: " + all);
-            }
-            throwInputError(spec.loc, obj.className() + (obj.name().empty() ? "" : " '" + obj.name() + "'") +
-                                          ": unknown attribute '" + key + "'",
-                            notes);
-        }
-        // a node's parameters take values or links, as a component's (gravity="@g.direction",
-        // gravityCurve="@ramp"), except its name
-        if (!allowLinks && !value.empty() && value[0] == '@' && key == "name")
-            throwInputError(spec.loc, obj.className() + ": attribute '" + key + "' cannot be a link");
-        p->read(value, spec.loc);
+/// What one build keeps besides the graph: the errors found so far (the build goes on after each,
+/// docs/design.md section 7) and what they broke, so that an error that follows from another (a link
+/// to a component that could not be created, a missing parameter whose value was refused) is not
+/// reported again.
+struct Build {
+    explicit Build(const ElementSpec& root) : errors({root.loc.file, 0}) {}
+    ErrorList errors;
+    size_t next = 0;                                  ///< the next element's index, in file order
+    std::map<const Base*, size_t> elementOf;          ///< the element each node and component came from
+    std::set<std::pair<const Base*, std::string>> badAttributes;  ///< attributes that were refused
+    std::set<std::string> missingComponents;          ///< the names of the elements that made no component
+    bool bad(const Base& b, const std::string& attribute) const { return badAttributes.count({&b, attribute}) > 0; }
+    size_t orderOf(const Base& b) const {
+        auto it = elementOf.find(&b);
+        return it == elementOf.end() ? ErrorList::kLast : it->second;
     }
-}
+};
 
-void buildChildren(Node& node, const ElementSpec& spec);
-
-std::unique_ptr<Node> buildNode(const ElementSpec& spec) {
-    auto node = std::make_unique<Node>();
-    node->setLoc(spec.loc);
-    // name first, so that later errors name the node
-    setAttributes(*node, spec, false);
-    buildChildren(*node, spec);
-    return node;
-}
-
-void buildComponent(Node& node, const ElementSpec& spec) {
-    Registry& reg = Registry::instance();
-    auto comp = reg.create(spec.tag);
-    if (!comp) {
+/// Sets one attribute of obj; an unknown attribute or a refused value is a located error.
+void setAttribute(Base& obj, const ElementSpec& spec, const std::string& key, const std::string& value, bool allowLinks,
+                  Build& b) {
+    // not findParam: an attribute sets the parameter, which read() records (ParamLog.h)
+    BaseParam* p = nullptr;
+    for (BaseParam* q : obj.params())
+        if (q->name() == key) p = q;
+    if (!p) {
         std::vector<std::string> notes;
-        if (auto* hint = reg.knownElsewhere(spec.tag)) notes.push_back(*hint);
-        auto close = closestMatches(spec.tag, reg.names());
+        auto close = closestMatches(key, obj.paramNames());
         if (!close.empty()) {
             std::string s = "did you mean ";
             for (size_t i = 0; i < close.size(); ++i) s += (i ? " or '" : "'") + close[i] + "'";
             notes.push_back(s + "?");
+        } else {
+            std::string all;
+            for (auto& n : obj.paramNames()) all += (all.empty() ? "" : ", ") + n;
+            notes.push_back(obj.className() + " takes: " + all);
         }
-        if (notes.empty()) notes.push_back("`fascia-run --list` prints every component; a component of your own plugin needs <RequiredPlugin name=\"...\"/>");
-        throwInputError(spec.loc, "unknown component '" + spec.tag + "'", notes);
+        throwInputError(spec.loc, obj.className() + (obj.name().empty() ? "" : " '" + obj.name() + "'") +
+                                      ": unknown attribute '" + key + "'",
+                        notes);
+    }
+    b.badAttributes.insert({&obj, key});  // until it is read
+    // a node's parameters take values or links, as a component's (gravity="@g.direction",
+    // gravityCurve="@ramp"), except its name
+    if (!allowLinks && !value.empty() && value[0] == '@' && key == "name")
+        throwInputError(spec.loc, obj.className() + ": attribute '" + key + "' cannot be a link");
+    p->read(value, spec.loc);
+    b.badAttributes.erase({&obj, key});
+}
+
+/// Sets every attribute of obj, each error kept and the attribute left as it was.
+void setAttributes(Base& obj, const ElementSpec& spec, bool allowLinks, Build& b) {
+    for (auto& [key, value] : spec.attributes)
+        b.errors.attempt(b.orderOf(obj), [&] { setAttribute(obj, spec, key, value, allowLinks, b); });
+}
+
+void buildChildren(Node& node, const ElementSpec& spec, Build& b);
+
+std::unique_ptr<Node> buildNode(const ElementSpec& spec, Build& b) {
+    auto node = std::make_unique<Node>();
+    node->setLoc(spec.loc);
+    b.elementOf[node.get()] = b.next++;
+    // name first, so that later errors name the node
+    setAttributes(*node, spec, false, b);
+    buildChildren(*node, spec, b);
+    return node;
+}
+
+/// The component of an element, or the located error of an unknown tag, with the closest names.
+std::unique_ptr<Component> createComponent(const ElementSpec& spec) {
+    Registry& reg = Registry::instance();
+    auto comp = reg.create(spec.tag);
+    if (comp) return comp;
+    std::vector<std::string> notes;
+    if (auto* hint = reg.knownElsewhere(spec.tag)) notes.push_back(*hint);
+    auto close = closestMatches(spec.tag, reg.names());
+    if (!close.empty()) {
+        std::string s = "did you mean ";
+        for (size_t i = 0; i < close.size(); ++i) s += (i ? " or '" : "'") + close[i] + "'";
+        notes.push_back(s + "?");
+    }
+    if (notes.empty()) notes.push_back("`fascia-run --list` prints every component; a component of your own plugin needs <RequiredPlugin name=\"...\"/>");
+    throwInputError(spec.loc, "unknown component '" + spec.tag + "'", notes);
+}
+
+void buildComponent(Node& node, const ElementSpec& spec, Build& b) {
+    const size_t at = b.next++;
+    std::string name = spec.tag;  // (the name an unnamed one would get, as far as links go)
+    for (auto& [k, v] : spec.attributes)
+        if (k == "name") name = v;
+    std::unique_ptr<Component> comp;
+    if (!b.errors.attempt(at, [&] { comp = createComponent(spec); })) {
+        b.missingComponents.insert(name);  // its attributes are not checked: no one knows what it takes
+        return;
     }
     comp->setLoc(spec.loc);
     for (auto& [k, v] : spec.attributes)
         if (k == "name") comp->setName(v);
-    if (!spec.children.empty())
-        throwInputError(spec.children.front().loc, "component <" + spec.tag + "> cannot hold elements; put <" +
-                                                       spec.children.front().tag + "> in a <Node>");
+    b.errors.attempt(at, [&] {
+        if (!spec.children.empty())
+            throwInputError(spec.children.front().loc, "component <" + spec.tag + "> cannot hold elements; put <" +
+                                                           spec.children.front().tag + "> in a <Node>");
+    });
     Component& c = node.addComponent(std::move(comp));
-    setAttributes(c, spec, true);
+    b.elementOf[&c] = at;
+    setAttributes(c, spec, true, b);
 }
 
-void buildChildren(Node& node, const ElementSpec& spec) {
+/// A child node has a name, unique among its siblings, and none of the root's time settings.
+void checkChildNode(const Node& node, const Node& n, const ElementSpec& spec, std::set<std::string>& names, Build& b) {
+    const size_t at = b.orderOf(n);
+    b.errors.attempt(at, [&] {
+        if (n.name().empty() && !b.bad(n, "name")) throwInputError(spec.loc, "a <Node> needs a name");
+    });
+    for (const BaseParam* p : {static_cast<const BaseParam*>(&n.dt), static_cast<const BaseParam*>(&n.dtSafety),
+                               static_cast<const BaseParam*>(&n.endTime)})
+        b.errors.attempt(at, [&] {
+            if (p->isSet() && !b.bad(n, p->name()))
+                throwInputError(spec.loc, "Node '" + n.name() + "': " + p->name() +
+                                              " belongs on the root node (it sets the time of the whole scene)");
+        });
+    b.errors.attempt(at, [&] {
+        if (!n.name().empty() && !names.insert("node:" + n.name()).second)
+            throwInputError(spec.loc, "two child nodes of '" + node.name() + "' are named '" + n.name() + "'");
+    });
+}
+
+void buildChildren(Node& node, const ElementSpec& spec, Build& b) {
     std::set<std::string> names;
     for (auto& child : spec.children) {
         if (child.tag == "RequiredPlugin") continue;  // loaded before the build
         if (child.tag == "Node") {
-            Node& n = node.addChild(buildNode(child));
-            if (n.name().empty()) throwInputError(child.loc, "a <Node> needs a name");
-            for (BaseParam* p : {static_cast<BaseParam*>(&n.dt), static_cast<BaseParam*>(&n.dtSafety),
-                                 static_cast<BaseParam*>(&n.endTime)})
-                if (p->isSet())
-                    throwInputError(child.loc, "Node '" + n.name() + "': " + p->name() +
-                                                   " belongs on the root node (it sets the time of the whole scene)");
-            if (!names.insert("node:" + n.name()).second)
-                throwInputError(child.loc, "two child nodes of '" + node.name() + "' are named '" + n.name() + "'");
+            Node& n = node.addChild(buildNode(child, b));
+            checkChildNode(node, n, child, names, b);
         } else {
-            buildComponent(node, child);
+            buildComponent(node, child, b);
         }
     }
     // unique component names among siblings (unnamed components get their class name, numbered)
     std::set<std::string> used;
     for (auto& c : node.components())
-        if (!c->name().empty() && !used.insert(c->name()).second)
-            throwInputError(c->loc(), "two components of node '" + node.name() + "' are named '" + c->name() + "'");
+        b.errors.attempt(b.orderOf(*c), [&] {
+            if (!c->name().empty() && !used.insert(c->name()).second)
+                throwInputError(c->loc(), "two components of node '" + node.name() + "' are named '" + c->name() + "'");
+        });
     // the first free of Class, Class2, Class3, ...; names are only ever added, so the search for the
     // next one of a class resumes where the last one stopped (linear in the count, not quadratic)
     std::map<std::string, int> nextIndex;
@@ -217,69 +273,101 @@ std::vector<std::string> allComponentPaths(Node& root) {
     return out;
 }
 
-/// Resolves the links of one object's parameters (a component's, or a node's own, e.g. gravityCurve),
-/// relative to node n.
-void resolveLinksOf(Base* c, const Node& n, Node& root) {
-            for (BaseParam* p : c->params()) {
-                if (p->linkText().empty()) continue;
-                const std::string link = p->linkText().substr(1);
-                std::string compPath = link, field;
-                if (!p->isComponentLink()) {
-                    auto dot = link.rfind('.');
-                    const auto slash = link.rfind('/');
-                    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-                        c->fail(*p, p->name() + " = \"" + p->linkText() + "\" must link to a field: \"@component.field\"");
-                    compPath = link.substr(0, dot);
-                    field = link.substr(dot + 1);
-                }
-                Component* target = n.resolveComponent(compPath);
-                if (!target) {
-                    std::vector<std::string> notes;
-                    auto close = closestMatches(compPath.substr(compPath.rfind('/') + 1), allComponentPaths(root));
-                    for (auto& s : close) notes.push_back("did you mean '" + s + "'?");
-                    c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to nothing: no component '" + compPath +
-                                    "' from node '" + n.name() + "'",
-                            notes);
-                }
-                if (target == c) c->fail(*p, p->name() + " links to its own component");
-                p->setLinkTarget(target);
-                if (p->isComponentLink()) {
-                    auto* l = static_cast<BaseLink*>(p);
-                    if (!l->setTarget(target))
-                        c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to " + target->className() + " '" +
-                                        target->name() + "', which is not a " + l->targetType());
-                    continue;
-                }
-                BaseParam* src = target->findParam(field);
-                if (!src) {
-                    std::vector<std::string> notes;
-                    for (auto& s : closestMatches(field, target->paramNames())) notes.push_back("did you mean '" + s + "'?");
-                    c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to nothing: " + target->className() +
-                                    " '" + target->name() + "' has no field '" + field + "'",
-                            notes);
-                }
-                if (!p->canBindTo(*src))
-                    c->fail(*p, p->name() + " (" + p->typeName() + ") cannot take " + target->className() + "." + field +
-                                    " (" + src->typeName() + ")");
-                p->bindTo(src);
-            }
+/// Resolves the link of one parameter of c (a component's, or a node's own, e.g. gravityCurve),
+/// relative to node n. A link to an element that made no component is left unresolved without a
+/// word: its element's error says what is wrong.
+void resolveLink(Base* c, BaseParam* p, const Node& n, Node& root, const Build& b) {
+    const std::string link = p->linkText().substr(1);
+    std::string compPath = link, field;
+    if (!p->isComponentLink()) {
+        auto dot = link.rfind('.');
+        const auto slash = link.rfind('/');
+        if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+            c->fail(*p, p->name() + " = \"" + p->linkText() + "\" must link to a field: \"@component.field\"");
+        compPath = link.substr(0, dot);
+        field = link.substr(dot + 1);
+    }
+    Component* target = n.resolveComponent(compPath);
+    if (!target) {
+        if (b.missingComponents.count(compPath.substr(compPath.rfind('/') + 1))) return;
+        std::vector<std::string> notes;
+        auto close = closestMatches(compPath.substr(compPath.rfind('/') + 1), allComponentPaths(root));
+        for (auto& s : close) notes.push_back("did you mean '" + s + "'?");
+        c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to nothing: no component '" + compPath +
+                        "' from node '" + n.name() + "'",
+                notes);
+    }
+    if (target == c) c->fail(*p, p->name() + " links to its own component");
+    p->setLinkTarget(target);
+    if (p->isComponentLink()) {
+        auto* l = static_cast<BaseLink*>(p);
+        if (!l->setTarget(target))
+            c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to " + target->className() + " '" +
+                            target->name() + "', which is not a " + l->targetType());
+        return;
+    }
+    BaseParam* src = target->findParam(field);
+    if (!src) {
+        std::vector<std::string> notes;
+        for (auto& s : closestMatches(field, target->paramNames())) notes.push_back("did you mean '" + s + "'?");
+        c->fail(*p, p->name() + " = \"" + p->linkText() + "\" links to nothing: " + target->className() +
+                        " '" + target->name() + "' has no field '" + field + "'",
+                notes);
+    }
+    if (!p->canBindTo(*src))
+        c->fail(*p, p->name() + " (" + p->typeName() + ") cannot take " + target->className() + "." + field +
+                        " (" + src->typeName() + ")");
+    p->bindTo(src);
 }
 
-void resolveLinks(Node& root) {
+/// Resolves every link of the scene, each error kept.
+void resolveLinks(Node& root, Build& b) {
+    auto linksOf = [&](Base* c, const Node& n) {
+        for (BaseParam* p : c->params())
+            if (!p->linkText().empty())
+                b.errors.attempt(b.orderOf(*c), [&] { resolveLink(c, p, n, root, b); });
+    };
     root.visit([&](const Node& n) {
-        resolveLinksOf(const_cast<Node*>(&n), n, root);
-        for (auto& c : n.components()) resolveLinksOf(c.get(), n, root);
+        linksOf(const_cast<Node*>(&n), n);
+        for (auto& c : n.components()) linksOf(c.get(), n);
     });
 }
 
-void checkRequired(Node& root) {
+/// Every required parameter is set, except one whose value was refused (its own error says so).
+void checkRequired(Node& root, Build& b) {
     root.visit([&](const Node& n) {
         for (auto& c : n.components())
             for (BaseParam* p : c->params())
-                if (p->spec().isRequired && !p->isSet())
-                    c->fail("missing required parameter '" + p->name() + "'" +
-                            (p->spec().helpText.empty() ? "" : " (" + p->spec().helpText + ")"));
+                b.errors.attempt(b.orderOf(*c), [&] {
+                    if (p->spec().isRequired && !p->isSet() && !b.bad(*c, p->name()))
+                        c->fail("missing required parameter '" + p->name() + "'" +
+                                (p->spec().helpText.empty() ? "" : " (" + p->spec().helpText + ")"));
+                });
     });
+}
+
+/// Loads the plugins the scene names (<RequiredPlugin name="..."/>, anywhere in it), so that their
+/// components exist before the build. Each one's error is kept; any stops the load after them, since
+/// the components of a plugin that failed would all be unknown.
+void loadRequiredPlugins(const ElementSpec& root) {
+    PluginManager& pm = PluginManager::instance();
+    pm.loadDefaultPlugins();
+    std::vector<const ElementSpec*> required;
+    collectRequiredPlugins(root, required);
+    ErrorList errors({root.loc.file, 0});
+    for (size_t i = 0; i < required.size(); ++i)
+        errors.attempt(i, [&, r = required[i]] {
+            std::string name;
+            for (auto& [k, v] : r->attributes) {
+                if (k == "name") name = v;
+                else throwInputError(r->loc, "unknown attribute '" + k + "' of RequiredPlugin", {"RequiredPlugin takes: name"});
+            }
+            if (name.empty()) throwInputError(r->loc, "RequiredPlugin needs name=\"...\" (a plugin name or a path to its .so)");
+            std::vector<std::string> dirs;
+            if (!r->loc.file.empty() && r->loc.file[0] != '<') dirs.push_back(fs::path(r->loc.file).parent_path().string());
+            pm.load(name, r->loc, dirs);
+        });
+    errors.throwIfAny();
 }
 
 } // namespace
@@ -302,28 +390,18 @@ ElementSpec parseSceneString(const std::string& xml, const std::string& virtualN
 }
 
 std::unique_ptr<Node> buildScene(const ElementSpec& root) {
-    PluginManager& pm = PluginManager::instance();
-    pm.loadDefaultPlugins();
-    std::vector<const ElementSpec*> required;
-    collectRequiredPlugins(root, required);
-    for (auto* r : required) {
-        std::string name;
-        for (auto& [k, v] : r->attributes) {
-            if (k == "name") name = v;
-            else throwInputError(r->loc, "unknown attribute '" + k + "' of RequiredPlugin", {"RequiredPlugin takes: name"});
-        }
-        if (name.empty()) throwInputError(r->loc, "RequiredPlugin needs name=\"...\" (a plugin name or a path to its .so)");
-        std::vector<std::string> dirs;
-        if (!r->loc.file.empty() && r->loc.file[0] != '<') dirs.push_back(fs::path(r->loc.file).parent_path().string());
-        pm.load(name, r->loc, dirs);
-    }
+    loadRequiredPlugins(root);
     if (root.tag != "Node")
         throwInputError(root.loc, "the root element is <" + root.tag + ">, expected <Node>",
                         {"a scene starts with <Node name=\"root\" dt=\"...\">"});
-    auto node = buildNode(root);
+    // the build goes on after an error, so that one load reports every independent one; they are
+    // thrown together at the end, in file order (the order of their elements)
+    Build b(root);
+    auto node = buildNode(root, b);
     if (node->name().empty()) node->setName("root");
-    checkRequired(*node);
-    resolveLinks(*node);
+    checkRequired(*node, b);
+    resolveLinks(*node, b);
+    b.errors.throwIfAny();
     return node;
 }
 

@@ -1,4 +1,5 @@
 #include "fascia/sim/Simulation.h"
+#include "fascia/base/ErrorList.h"
 #include "fascia/scene/SceneLoader.h"
 #include "fascia/sim/Tool.h"
 
@@ -69,15 +70,19 @@ std::string shortNumber(double v) {
 }
 
 /// A node has one integrator: its states find the first, so a second one would never be called.
-void checkOneIntegratorPerNode(const Node& root) {
-    root.visit([](const Node& n) {
+/// Each node's error is kept in errors, under the index (in all) of its second integrator.
+void checkOneIntegratorPerNode(const Node& root, const std::vector<Component*>& all, ErrorList& errors) {
+    root.visit([&](const Node& n) {
         const auto integrators = n.findAllLocal<BaseIntegrator>();
         if (integrators.size() < 2) return;
         const BaseIntegrator* first = integrators[0];
-        integrators[1]->fail("a second integrator in node '" + n.name() + "', which has " + first->className() + " '" +
-                                 first->name() + "'" + (first->loc().empty() ? "" : " (" + first->loc().str() + ")") +
-                                 ": only the first would be called",
-                             {"keep one integrator per node; a state in a child node may have its own"});
+        const size_t at = size_t(std::find(all.begin(), all.end(), integrators[1]) - all.begin());
+        errors.attempt(at, [&] {
+            integrators[1]->fail("a second integrator in node '" + n.name() + "', which has " + first->className() + " '" +
+                                     first->name() + "'" + (first->loc().empty() ? "" : " (" + first->loc().str() + ")") +
+                                     ": only the first would be called",
+                                 {"keep one integrator per node; a state in a child node may have its own"});
+        });
     });
 }
 
@@ -112,25 +117,63 @@ void checkConstraintConflicts(const MechanicalGroup& g) {
     }
 }
 
+/// Runs every component's init, after the components it links to and those it lists in
+/// dependencies(), and keeps the errors of independent components (docs/design.md, section 7). A
+/// component whose init failed or did not run leaves uninitialised, without a word, the components
+/// that may read it: those that link to it or list it, and those of its node, of the nodes above it
+/// and of the nodes below it (a component may read its context or its subtree at init without listing
+/// them). Components elsewhere (a body in a sibling node) still run, and report their own errors.
 struct InitOrder {
-    std::set<Component*> done, active;
-    void run(Component* c) {
-        if (done.count(c)) return;
-        if (active.count(c))
-            c->fail("link cycle: " + c->path() + " depends, through its links, on itself");
+    const std::vector<Component*>& all;
+    ErrorList& errors;
+    std::set<Component*> done, stopped, active;
+    std::set<const Node*> stoppedIn;  ///< the nodes of the components stopped
+    std::set<const Node*> above;      ///< those nodes and every node above them
+
+    /// Whether a component stopped in n's node, in a node above it or in a node below it.
+    bool nearStopped(const Node* n) const {
+        if (above.count(n)) return true;
+        for (; n; n = n->parent())
+            if (stoppedIn.count(n)) return true;
+        return false;
+    }
+    void stop(Component* c) {
+        stopped.insert(c);
+        stoppedIn.insert(c->node());
+        for (const Node* n = c->node(); n && above.insert(n).second; n = n->parent()) {}
+    }
+    size_t orderOf(Component* c) const { return size_t(std::find(all.begin(), all.end(), c) - all.begin()); }
+
+    /// Whether c is initialised after the call.
+    bool run(Component* c) {
+        if (done.count(c)) return true;
+        if (stopped.count(c)) return false;
+        if (active.count(c)) {
+            errors.attempt(orderOf(c), [&] { c->fail("link cycle: " + c->path() + " depends, through its links, on itself"); });
+            return false;  // (the frames of the cycle stop, as dependents of it)
+        }
         active.insert(c);
+        bool ready = true;  // every dependency is run, so that an independent error among them is found
         for (BaseParam* p : c->params())
-            if (auto* t = dynamic_cast<Component*>(p->linkTarget())) run(t);
-        for (Component* d : c->dependencies()) run(d);
+            if (auto* t = dynamic_cast<Component*>(p->linkTarget())) ready = run(t) && ready;
+        for (Component* d : c->dependencies()) ready = run(d) && ready;
         active.erase(c);
+        ready = ready && !nearStopped(c->node());
         // a value that came through a data link is known only now, and one set from code (the C++
         // API: Param::set) was never checked: check their ranges and choices here, for every
         // component alike (an XML value was checked when read; checking it again costs nothing)
-        for (BaseParam* p : c->params())
-            if (!p->isComponentLink() && (p->linkTarget() || p->isSet())) p->checkValue();
-        c->init();
+        ready = ready && errors.attempt(orderOf(c), [&] {
+            for (BaseParam* p : c->params())
+                if (!p->isComponentLink() && (p->linkTarget() || p->isSet())) p->checkValue();
+            c->init();
+        });
+        if (!ready) {
+            stop(c);
+            return false;
+        }
         SceneInit::markInitialised(*c);
         done.insert(c);
+        return true;
     }
 };
 
@@ -159,9 +202,12 @@ void Simulation::init() {
     if (m_initialised) return;
     m_all.clear();
     collect(*m_root, m_all);
-    checkOneIntegratorPerNode(*m_root);
-    InitOrder order;
+    // the init phase: its errors are thrown together, in scene order, before anything else is checked
+    ErrorList errors({m_root->loc().file, 0});
+    checkOneIntegratorPerNode(*m_root, m_all, errors);
+    InitOrder order{m_all, errors, {}, {}, {}, {}, {}};
     for (Component* c : m_all) order.run(c);
+    errors.throwIfAny();
 
     // assemble one group per state: a state belongs to the integrator in its context, and every
     // force field, mass and constraint to the state in its context

@@ -121,6 +121,111 @@ TEST_CASE("A scene that fails before the run starts leaves no file behind", "[fa
     CHECK(w.filesIn("out").empty());
 }
 
+namespace {
+
+/// The lines of a run's stderr.
+std::vector<std::string> linesOf(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+/// s with the first `from` replaced by `to` (the test fails when there is none).
+std::string edited(std::string s, const std::string& from, const std::string& to) {
+    const size_t at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+}
+
+/// The lines of a run's stderr that are errors, not notes.
+std::vector<std::string> errorLinesOf(const std::string& text) {
+    std::vector<std::string> out;
+    for (auto& line : linesOf(text))
+        if (line.find(": error: ") != std::string::npos) out.push_back(line);
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("A scene with three independent mistakes prints the three errors in order and their count, and exits 2",
+          "[fascia-run]") {
+    // an unknown attribute on line 4, a value out of range on line 7, an unknown component on line 10
+    Workspace w;
+    std::string s = cube("dt=\"0.01\"", "1000", "", "", "  <ConstantForse group=\"zmax\" totalForce=\"0 0 1\"/>\n");
+    s = edited(s, "density=", "densty=");
+    s = edited(s, "damping=\"20\"", "damping=\"-20\"");
+    w.write("s.xml", s);
+    auto r = w.run("s.xml --steps 1 --output out");
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(errorLinesOf(r.err) == std::vector<std::string>{
+                                     "s.xml:4: error: LumpedMass: unknown attribute 'densty'",
+                                     "s.xml:7: error: SemiImplicitEuler: damping = -20 is outside >= 0",
+                                     "s.xml:10: error: unknown component 'ConstantForse'"});
+    CHECK(r.firstErrLine() == "s.xml:4: error: LumpedMass: unknown attribute 'densty'");
+    CHECK_THAT(r.err, Contains("s.xml:4: note: did you mean 'density'?\n"));
+    CHECK_THAT(r.err, Contains("s.xml:10: note: did you mean 'ConstantForce'?\n"));
+    CHECK(linesOf(r.err).back() == "s.xml: 3 errors");
+    CHECK(w.filesIn("out").empty());
+}
+
+TEST_CASE("A scene with 30 mistakes prints the first 20, says how many more, and exits 2", "[fascia-run]") {
+    Workspace w;
+    std::string extra;
+    for (int i = 0; i < 30; ++i) extra += "  <FixedConstraint name=\"fix" + std::to_string(i) + "\" group=\"zmin\" axes=\"1\"/>\n";
+    w.write("s.xml", cube("dt=\"0.01\"", "1000", "", "", extra));
+    auto r = w.run("s.xml --steps 1 --output out");
+    INFO(r.err);
+    CHECK(r.code == 2);
+    const auto errors = errorLinesOf(r.err);
+    REQUIRE(errors.size() == 20);
+    CHECK(errors.front() == "s.xml:10: error: FixedConstraint 'fix0': unknown attribute 'axes'");
+    CHECK(errors.back() == "s.xml:29: error: FixedConstraint 'fix19': unknown attribute 'axes'");
+    const auto lines = linesOf(r.err);
+    REQUIRE(lines.size() >= 2);
+    CHECK(lines[lines.size() - 2] == "s.xml: note: 10 more errors not shown");
+    CHECK(lines.back() == "s.xml: 30 errors");
+}
+
+TEST_CASE("An error that follows from another one is printed once", "[fascia-run]") {
+    Workspace w;
+    SECTION("a required parameter whose value was refused is not missing too") {
+        std::string s = cube("dt=\"0.01\"");
+        s = edited(s, "<StVenantKirchhoff lambda=\"1500\" mu=\"1000\"/>", "<IncompressibleNeoHookean C1=\"soft\"/>");
+        w.write("s.xml", s);
+        auto r = w.run("s.xml --steps 1 --output out");
+        INFO(r.err);
+        CHECK(r.code == 2);
+        CHECK(errorLinesOf(r.err) == std::vector<std::string>{"s.xml:5: error: IncompressibleNeoHookean: C1 = \"soft\" is not a number"});
+        CHECK_THAT(r.err, !Contains("errors"));  // one error: no count line
+    }
+    SECTION("a link to a component that could not be created is not a link to nothing") {
+        std::string s = cube("dt=\"0.01\"");
+        s = edited(s, "<StVenantKirchhoff", "<StVenantKirchof name=\"mat\"");
+        s = edited(s, "<HEMLForceField name=\"heml\"/>", "<HEMLForceField name=\"heml\" material=\"@mat\"/>");
+        w.write("s.xml", s);
+        auto r = w.run("s.xml --steps 1 --output out");
+        INFO(r.err);
+        CHECK(r.code == 2);
+        CHECK(errorLinesOf(r.err) == std::vector<std::string>{"s.xml:5: error: unknown component 'StVenantKirchof'"});
+    }
+}
+
+TEST_CASE("An XML syntax error is printed alone, whatever else the scene holds", "[fascia-run]") {
+    Workspace w;
+    std::string s = cube("dt=\"0.01\"");
+    s = edited(s, "density=", "densty=");                                // an error the build would find
+    s = edited(s, "<Monitor name=\"curve\"", "<Monitor name=curve");    // line 8: stops the parse
+    w.write("s.xml", s);
+    auto r = w.run("s.xml --steps 1 --output out");
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(errorLinesOf(r.err) == std::vector<std::string>{
+                                     "s.xml:8: error: XML syntax error: malformed attribute (missing quotes or '=')"});
+    CHECK(linesOf(r.err).size() == 1);
+}
+
 TEST_CASE("A missing or folder or empty or FIFO scene is an error at its line 1 with exit code 2", "[fascia-run]") {
     Workspace w;
     auto r = w.run("missing.xml");

@@ -1,5 +1,7 @@
 #include "CoreTestSupport.h"
 
+#include "fascia/base/ErrorList.h"
+
 using namespace fascia::core;
 using namespace fascia::testing;
 
@@ -64,4 +66,72 @@ TEST_CASE("closestMatches suggests near names best first and nothing far", "[Err
     auto m = closestMatches("abcd", many, 2);
     REQUIRE(m.size() == 2);
     CHECK(m[0] == "abcd");
+}
+
+// ---- several errors in one (ErrorList) ------------------------------------------------------
+
+TEST_CASE("An ErrorList keeps what fails, goes on, and throws nothing when nothing failed", "[Error][ErrorList]") {
+    ErrorList list({"s.xml", 0});
+    CHECK(list.attempt(0, [] {}));
+    CHECK(list.empty());
+    CHECK_NOTHROW(list.throwIfAny());
+    CHECK_FALSE(list.attempt(0, [] { throwInputError({"s.xml", 2}, "bad"); }));
+    CHECK(list.count() == 1);
+    // one error is thrown as it was: nothing appended
+    auto e = errorOf([&] { list.throwIfAny(); });
+    REQUIRE(e);
+    CHECK(std::string(e->what()) == "s.xml:2: error: bad");
+    CHECK(e->count() == 1);
+    CHECK(e->more().empty());
+    // what is no core::Error is no input error to gather: it passes
+    CHECK_THROWS_AS(list.attempt(0, [] { throw std::logic_error("bug"); }), std::logic_error);
+}
+
+TEST_CASE("Several errors are thrown as one, in order of their keys, the first one's kind and text first",
+          "[Error][ErrorList]") {
+    ErrorList list({"s.xml", 0});
+    list.add(Error(ErrorKind::Input, {"s.xml", 9}, "late", {"a note"}), 9);
+    list.add(Error(ErrorKind::Output, {"s.xml", 3}, "first"), 3);
+    list.add(Error(ErrorKind::Input, {"s.xml", 3}, "second at 3"), 3);  // found after, kept after
+    auto e = errorOf([&] { list.throwIfAny(); });
+    REQUIRE(e);
+    CHECK(e->count() == 3);
+    CHECK(e->kind() == ErrorKind::Output);  // the first error's: it sets the exit code
+    CHECK(e->message() == "first");
+    REQUIRE(e->more().size() == 2);
+    CHECK(e->more()[0].message() == "second at 3");
+    CHECK(e->more()[1].notes() == std::vector<std::string>{"a note"});
+    CHECK(std::string(e->what()) ==
+          "s.xml:3: error: first\ns.xml:3: error: second at 3\ns.xml:9: error: late\ns.xml:9: note: a note");
+}
+
+TEST_CASE("An ErrorList shows at most kErrorsShown errors and counts the others", "[Error][ErrorList]") {
+    const int n = GENERATE(int(kErrorsShown) + 1, 1030);  // (1030: past what the list keeps, still counted)
+    ErrorList list({"s.xml", 0});
+    for (int i = 0; i < n; ++i) list.add(Error(ErrorKind::Input, {"s.xml", i + 1}, "e" + std::to_string(i)), size_t(i));
+    auto e = errorOf([&] { list.throwIfAny(); });
+    REQUIRE(e);
+    CHECK(e->count() == size_t(n));
+    CHECK(e->more().size() == kErrorsShown - 1);
+    CHECK(e->unshown() == size_t(n) - kErrorsShown);
+    const std::string what = e->what();
+    const std::string last = what.substr(what.rfind('\n') + 1);
+    CHECK(last == (n == int(kErrorsShown) + 1 ? "s.xml: note: 1 more error not shown"
+                                               : "s.xml: note: " + std::to_string(n - int(kErrorsShown)) + " more errors not shown"));
+}
+
+TEST_CASE("An error that stands for several is taken apart when it joins a list", "[Error][ErrorList]") {
+    ErrorList inner({"a.xml", 0});
+    for (int i = 1; i <= 3; ++i) inner.add(Error(ErrorKind::Input, {"a.xml", i}, "inner" + std::to_string(i)), size_t(i));
+    auto nested = errorOf([&] { inner.throwIfAny(); });
+    REQUIRE(nested);
+    ErrorList outer({"b.xml", 0});
+    outer.add(Error(ErrorKind::Input, {"b.xml", 1}, "outer"), 0);
+    outer.add(*nested, 1);
+    CHECK(outer.count() == 4);
+    auto e = errorOf([&] { outer.throwIfAny(); });
+    REQUIRE(e);
+    REQUIRE(e->more().size() == 3);
+    for (const Error& m : e->more()) CHECK(m.more().empty());
+    CHECK(e->more()[2].message() == "inner3");
 }

@@ -1,5 +1,7 @@
 #pragma once
 /// Located errors in compiler format ("file:line: error: message"), so editors jump to the spot.
+#include <cstddef>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,13 +27,28 @@ enum class ErrorKind {
 };
 
 /// The one exception type of Fascia. what() is the whole formatted message, notes included.
+///
+/// One Error may stand for several: a scene reports every independent mistake it finds in one load
+/// (core::ErrorList, docs/design.md section 7). kind(), loc(), message() and notes() are then the
+/// first error's, more() holds the others in order, and what() is the first error's text with each
+/// other's on the lines after it, then "file: note: N more errors not shown" past the limit, so that
+/// any catch site that prints what() prints them all.
 class Error : public std::runtime_error {
 public:
     Error(ErrorKind kind, SourceLoc loc, std::string message, std::vector<std::string> notes = {});
+    /// first standing for the errors found with it: more (single errors, in order) and `unshown` more
+    /// that were counted but not kept; `where` (the scene) locates the line about those.
+    Error(const Error& first, std::vector<Error> more, size_t unshown, const SourceLoc& where);
     ErrorKind kind() const { return m_kind; }
     const SourceLoc& loc() const { return m_loc; }
     const std::string& message() const { return m_message; }
     const std::vector<std::string>& notes() const { return m_notes; }
+    /// The further errors this one stands for (empty for a single error), each without more of its own.
+    const std::vector<Error>& more() const;
+    /// Errors found past the limit, counted but not kept.
+    size_t unshown() const { return m_unshown; }
+    /// How many errors this one stands for: 1 + more().size() + unshown().
+    size_t count() const { return 1 + more().size() + m_unshown; }
 
     /// Formats "file:line: error: message\nfile:line: note: n1\n..." ("file: byte N: error: ..." at a
     /// byte offset).
@@ -43,6 +60,9 @@ private:
     SourceLoc m_loc;
     std::string m_message;
     std::vector<std::string> m_notes;
+    // shared, so that copying an exception (which every throw and catch by value does) stays cheap
+    std::shared_ptr<const std::vector<Error>> m_more;
+    size_t m_unshown = 0;
 };
 
 /// Invalid input (scene, mesh, parameter value) located at loc: exit code 2.
