@@ -7,7 +7,7 @@
 
 namespace fascia::contact {
 
-/// A rigid closed triangle surface (a retractor, an ultrasound probe) read from an STL or OBJ file,
+/// A rigid closed triangle surface (a retractor, an ultrasound probe) read from an STL, OBJ or .vtp file,
 /// its vertices in the tool's frame. It must be closed, edge-manifold and consistently oriented
 /// (turned outwards when it faces in), with no degenerate triangle. Its signed distance comes from
 /// a grid sampled once at init (`resolution` cells along the surface box's longest side) and, near
@@ -29,7 +29,7 @@ public:
     const TriangleTree* tree() const { return m_tree.get(); }
     const DistanceGrid* grid() const { return m_grid.get(); }
 
-    core::Param<FilePath> m_mesh{this, core::ParamSpec("mesh").required().help("the tool's closed surface: .stl (ASCII or binary) or .obj, in metres in the tool's frame, relative to the scene file")};
+    core::Param<FilePath> m_mesh{this, core::ParamSpec("mesh").required().help("the tool's closed surface: .stl (ASCII or binary), .obj or .vtp (VTK XML PolyData; needs a build with VTK), in metres in the tool's frame, relative to the scene file")};
     core::Param<int> m_resolution{this, core::ParamSpec("resolution").min(2).help("cells of the signed distance grid along the longest side of the surface's box (8 bytes a node, and 8 bytes a triangle listed in a cell near the surface: at most 256 MiB in all)"), 64};
 
 private:

@@ -7,7 +7,7 @@
 
 namespace fascia::meshio {
 
-/// A finer visual surface (STL or OBJ) moved with a tetrahedral body, as SOFA's BarycentricMapping
+/// A finer visual surface (STL, OBJ or .vtp) moved with a tetrahedral body, as SOFA's BarycentricMapping
 /// does for rendering a smooth organ on a coarse volume mesh. At init each vertex is located in a
 /// tetrahedron of the body at rest (TetLocator: a grid of buckets, not a search over every
 /// tetrahedron); a vertex just outside the body takes the tetrahedron under its nearest boundary
@@ -36,7 +36,7 @@ public:
     /// The vertex positions at rest, as read from the file.
     const Positions& restPoints() const { return m_rest; }
 
-    core::Param<FilePath> m_filename{this, core::ParamSpec("filename").required().help("the visual surface: .stl (ASCII or binary) or .obj, in the body's rest coordinates, relative to the scene file")};
+    core::Param<FilePath> m_filename{this, core::ParamSpec("filename").required().help("the visual surface: .stl (ASCII or binary), .obj or .vtp (VTK XML PolyData; needs a build with VTK), in the body's rest coordinates, relative to the scene file")};
     core::Param<double> m_maxDistance{this, core::ParamSpec("maxDistance").unit("m").min(0).help("largest distance of a vertex from the body at rest; a vertex farther out is an error (0: 5 % of the diagonal of the body's bounding box)"), 0.0};
     core::Param<std::string> m_output{this, core::ParamSpec("output").help("base name of a .vtp series of the moved surface, relative to the output folder (empty: none)")};
     core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("write the .vtp series every N steps (the initial and the final state are always written)"), 1};

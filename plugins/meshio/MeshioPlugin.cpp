@@ -20,7 +20,7 @@ static void registerMeshio(fascia::core::Registry& r) {
 #if FASCIA_MESHIO_WITH_VTK  // a build without VTK (FASCIA_WITH_VTK=OFF) has no VTKExporter
     r.add<VTKExporter>("VTKExporter", "ParaView time series (.pvd + .vtu): displacement, velocity, force, cell data");
 #endif
-    r.add<BarycentricSurfaceMapping>("BarycentricSurfaceMapping", "a finer visual surface (.stl/.obj) moved with the tetrahedra of a body (and written as .vtp)");
+    r.add<BarycentricSurfaceMapping>("BarycentricSurfaceMapping", "a finer visual surface (.stl/.obj/.vtp) moved with the tetrahedra of a body (and written as .vtp)");
     r.add<Monitor>("Monitor", "CSV of node positions/displacements/velocities, reaction forces and element quantities");
 }
 

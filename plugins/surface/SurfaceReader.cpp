@@ -1,5 +1,7 @@
-// STL (ASCII and binary) and OBJ surface readers: fascia/surface/TriangleSurface.h.
+// STL (ASCII and binary) and OBJ surface readers, and the choice of reader by extension (.vtp in
+// VtpReader.cpp): fascia/surface/TriangleSurface.h.
 #include "fascia/surface/TriangleSurface.h"
+#include "VtpReader.h"
 #include "fascia/base/InputFile.h"
 
 #include <algorithm>
@@ -309,15 +311,16 @@ TriangleSurface readSurface(const std::string& path) {
     s.file = path;
     std::string ext = std::filesystem::path(path).extension().string();
     for (auto& c : ext) c = char(std::tolower((unsigned char)c));
-    if (ext != ".stl" && ext != ".obj")
-        fail(path, 0, "unknown surface file extension '" + ext + "': supported are .stl (ASCII or binary) and .obj");
+    if (ext != ".stl" && ext != ".obj" && ext != ".vtp")
+        fail(path, 0, "unknown surface file extension '" + ext + "': supported are .stl (ASCII or binary), .obj and .vtp (VTK XML PolyData)");
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))
         fail(path, 0, "surface file '" + path + "' does not exist; check the file name and the folder it is in");
     const std::string bytes = core::readRegularFile(path, "surface file", core::kMaxMeshFileBytes, {path, 0});
     if (bytes.empty()) fail(path, 0, "the surface file is empty");
     if (ext == ".stl") readStl(bytes, s);
-    else readObj(bytes, s);
+    else if (ext == ".obj") readObj(bytes, s);
+    else detail::readVtp(bytes, s);
     return s;
 }
 

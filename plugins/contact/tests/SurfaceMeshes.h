@@ -1,7 +1,7 @@
 #pragma once
 // Closed triangle surfaces for the SurfaceTool tests, made in code: the boundary of a set of
 // voxels (a finely tessellated box, a cube with a notch) and an icosphere; their exact signed
-// distances; and OBJ files of them in a temporary folder.
+// distances; and OBJ, ASCII STL and .vtp files of them in a temporary folder.
 #include "fascia/base/Types.h"
 
 #include <unistd.h>
@@ -175,6 +175,39 @@ inline std::string writeObj(const std::string& path, const Mesh& m, size_t skip 
     for (size_t t = 0; t + skip < m.triangles.size(); ++t)
         o << "f " << m.triangles[t][0] + 1 << " " << m.triangles[t][1] + 1 << " " << m.triangles[t][2] + 1 << "\n";
     o << extra;
+    return path;
+}
+
+/// Writes the mesh as ASCII STL (17 significant digits: the points read back exactly), `skip`
+/// triangles left out from the end; returns the path.
+inline std::string writeStl(const std::string& path, const Mesh& m, size_t skip = 0) {
+    std::ofstream o(path);
+    o.precision(17);
+    o << "solid mesh\n";
+    for (size_t t = 0; t + skip < m.triangles.size(); ++t) {
+        o << "facet normal 0 0 0\nouter loop\n";
+        for (int k : m.triangles[t]) o << "vertex " << m.points[size_t(k)][0] << " " << m.points[size_t(k)][1] << " " << m.points[size_t(k)][2] << "\n";
+        o << "endloop\nendfacet\n";
+    }
+    o << "endsolid mesh\n";
+    return path;
+}
+
+/// Writes the mesh as a .vtp (VTK XML PolyData, ascii data: no VTK needed to write it), its
+/// triangles as polygons, `skip` left out from the end; returns the path.
+inline std::string writeVtp(const std::string& path, const Mesh& m, size_t skip = 0) {
+    const size_t n = m.triangles.size() - skip;
+    std::ofstream o(path);
+    o.precision(17);
+    o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfPolys=\"" << n << "\">\n"
+      << "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const Vec3& v : m.points) o << "          " << v[0] << " " << v[1] << " " << v[2] << "\n";
+    o << "        </DataArray>\n      </Points>\n      <Polys>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (size_t t = 0; t < n; ++t) o << "          " << m.triangles[t][0] << " " << m.triangles[t][1] << " " << m.triangles[t][2] << "\n";
+    o << "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (size_t t = 0; t < n; ++t) o << "          " << 3 * (t + 1) << "\n";
+    o << "        </DataArray>\n      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
     return path;
 }
 

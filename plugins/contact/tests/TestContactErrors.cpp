@@ -5,6 +5,7 @@
 #include "SurfaceMeshes.h"
 
 #include <algorithm>
+#include <iterator>
 
 using namespace contacttest;
 using Catch::Matchers::Contains;
@@ -100,4 +101,34 @@ TEST_CASE("A surface tool's bad mesh or resolution is a located error", "[Surfac
                Contains("scene.xml:2: error: SurfaceTool 'probe': resolution = 1000: the signed distance grid (1007 x 1007 x 507 nodes, "));
     CHECK_THAT(errorOf(tool("mesh=\"" + good + "\" resolution=\"1000\"")),
                Contains(" MiB) and the triangle lists of its cells near the surface take more than the limit of 256 MiB"));
+}
+
+TEST_CASE("A surface tool's .vtp mesh gets the closed-surface checks of an .obj or .stl one, at the byte of a triangle", "[SurfaceTool]") {
+    using namespace surfacetest;
+    TempDir dir("vtp-errors");
+    const Mesh box = Voxels::box(Vec3(0, 0, 0), Vec3(0.02, 0.02, 0.01), 1, 1, 1).surface();  // 8 vertices, 12 triangles
+    auto tool = [&](const std::string& file) { return withTool("<SurfaceTool name=\"probe\" body=\"@block/state\" mesh=\"" + file + "\"/>"); };
+#if FASCIA_CONTACT_TEST_WITH_VTK
+    CHECK(errorOf(tool(writeVtp(dir.file("box.vtp"), box))).empty());
+    // the last triangle left out: open, located at the first point of the triangle named
+    const std::string open = writeVtp(dir.file("open.vtp"), box, 1);
+    const std::string e = errorOf(tool(open));
+    CHECK_THAT(e, Catch::StartsWith(open + ": byte "));
+    CHECK_THAT(e, Contains("has no neighbour across it: the surface is open") &&
+                      Contains("SurfaceTool 'probe' needs a closed, edge-manifold, consistently oriented surface") &&
+                      Contains("read by SurfaceTool 'probe' at scene.xml:2"));
+    const size_t byte = std::stoul(e.substr(open.size() + 7)), tri = std::stoul(e.substr(e.find("of triangle ") + 12)) - 1;
+    std::ifstream in(open);
+    const std::string text(std::istreambuf_iterator<char>(in), {});
+    const auto& t = box.triangles[tri];
+    CHECK(text.substr(byte, text.find('\n', byte) - byte) == std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]));
+    // one triangle turned over
+    Mesh turned = box;
+    std::swap(turned.triangles[4][1], turned.triangles[4][2]);
+    CHECK_THAT(errorOf(tool(writeVtp(dir.file("turned.vtp"), turned))),
+               Contains("turned.vtp: byte ") && Contains("the triangles are not consistently oriented"));
+#else
+    CHECK_THAT(errorOf(tool(writeVtp(dir.file("box.vtp"), box))),
+               Contains("box.vtp: error: this build has no VTK support") && Contains("read by SurfaceTool 'probe' at scene.xml:2"));
+#endif
 }

@@ -228,6 +228,34 @@ TEST_CASE("A surface tool's force and torque about its reference point are those
     CHECK(std::abs(ts.force().normalized().dot(normal)) == Approx(1).epsilon(1e-9));
 }
 
+TEST_CASE("A SurfaceTool from a .vtp presses like the same surface from .stl: the same force and torque", "[SurfaceTool][RigidTool]") {
+    // the tilted box of the test above, as ASCII STL and as .vtp (the format Fascia writes surfaces
+    // in): the same triangles, their points in another order (STL merges them as they come)
+    TempDir dir("vtp");
+    const Mesh box = Voxels::box(Vec3(-0.08, -0.08, 0), Vec3(0.12, 0.06, 0.03), 2, 2, 1).surface();
+    const std::string stl = writeStl(dir.file("box.stl"), box), vtp = writeVtp(dir.file("box.vtp"), box);
+    auto scene = [&](const std::string& mesh) {
+        return blockScene("<SemiImplicitEuler damping=\"60\"/>", "    <FixedConstraint name=\"base\" group=\"zmin\"/>\n",
+                          "  <SurfaceTool name=\"tool\" mesh=\"" + mesh + "\" resolution=\"16\" body=\"@block/state\" "
+                          "orientation=\"0.99863 0.05234 0 0\" keyTimes=\"0 0.3\" keyPositions=\"0.03 0.06 0.06  0.03 0.06 0.051\"/>\n",
+                          "dt=\"auto\"", "6 6 3");
+    };
+#if FASCIA_CONTACT_TEST_WITH_VTK
+    auto fromStl = Simulation::fromString(scene(stl), "scene.xml"), fromVtp = Simulation::fromString(scene(vtp), "scene.xml");
+    fromStl->runUntil(0.4);
+    fromVtp->runUntil(0.4);
+    RigidTool &a = toolOf(*fromStl, "tool"), &b = toolOf(*fromVtp, "tool");
+    REQUIRE(a.contactCount() > 3);
+    CHECK(b.contactCount() == a.contactCount());
+    CAPTURE(a.force().transpose(), b.force().transpose(), a.torque().transpose(), b.torque().transpose());
+    CHECK((b.force() - a.force()).norm() <= 1e-12 * a.force().norm());
+    CHECK((b.torque() - a.torque()).norm() <= 1e-12 * a.torque().norm());
+#else
+    CHECK_THAT(errorOf(scene(vtp)), Catch::Contains(vtp + ": error: this build has no VTK support") &&
+                                        Catch::Contains("read by SurfaceTool 'tool' at scene.xml:2"));
+#endif
+}
+
 TEST_CASE("A surface tool's grid and contact forces are bitwise the same with 1 and 2 threads", "[SurfaceTool][RigidTool]") {
     TempDir dir("threads");
     const std::string ball = writeObj(dir.file("ball.obj"), icosphere(3, 0.02, Vec3::Zero()));

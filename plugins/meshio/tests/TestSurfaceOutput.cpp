@@ -346,6 +346,52 @@ TEST_CASE("The mapped surface is written as a .vtp series that VTK reads back", 
     }
 }
 
+TEST_CASE("Fascia's own .vtp surfaces read back as surfaces: a mapping's visual surface, the exporter's boundary",
+          "[BarycentricSurfaceMapping][VTKExporter]") {
+    SECTION("a mapping's .vtp (lz4, as written) maps again, and follows the body as the surface it was written from") {
+        const Vec3 lo(0.01, 0.01, 0.01), hi(0.19, 0.09, 0.09);
+        MappedBox a("vtp-again", lo, hi, "output=\"skin\"");
+        const Positions written = *a.sim->surface("visual").points;  // step 0, as the file has it
+        a.sim->step();  // writes step 0 (no integrator: nothing moves)
+        a.sim->finish();
+        const auto s = fascia::surface::readSurface((a.dir / "skin_000000.vtp").string());
+        CHECK(s.format == "VTK XML PolyData");
+        CHECK(s.points == written);
+        CHECK(s.triangles == *a.sim->surface("visual").triangles);
+        auto b = Simulation::fromString(box("tetrahedra5", "  <BarycentricSurfaceMapping name=\"visual\" filename=\"skin_000000.vtp\"/>\n"),
+                                        "scene.xml", a.dir.string(), {a.dir.string(), 0});
+        auto* m = dynamic_cast<BarycentricSurfaceMapping*>(b->find("visual"));
+        REQUIRE(m);
+        CHECK(m->restPoints() == written);
+        fascia::Mat3 A;
+        A << 1.05, 0.1, 0, -0.02, 0.95, 0.03, 0, 0.04, 1.1;
+        const Vec3 t(0.003, 0.002, -0.001);
+        MappedBox fromObj("vtp-again-obj", lo, hi);  // the surface the file was written from
+        deformAffinely(fromObj.sim->state("state"), A, t);
+        deformAffinely(b->state("state"), A, t);
+        fromObj.sim->step();
+        b->step();
+        const Positions &pa = *fromObj.sim->surface("visual").points, &pb = *b->surface("visual").points;
+        REQUIRE(pa.size() == pb.size());
+        double worst = 0;
+        for (size_t v = 0; v < pa.size(); ++v) worst = std::max(worst, (pa[v] - pb[v]).norm());
+        CHECK(worst <= 1e-14);
+    }
+    SECTION("the exporter's boundary surface, in each compression, is closed and outwards around the body's volume") {
+        const std::string compression = GENERATE(as<std::string>{}, "lz4", "zlib", "none");
+        CAPTURE(compression);
+        auto dir = freshDir("vtp-read-" + compression);
+        auto sim = Simulation::fromString(box("tetrahedra6", "  <VTKExporter name=\"out\" surface=\"true\" compression=\"" + compression + "\"/>\n"),
+                                          "scene.xml", ".", {dir.string(), 0});
+        sim->step();
+        sim->finish();
+        auto s = fascia::surface::readSurface((dir / "out_surface_000000.vtp").string());
+        CHECK(s.triangles.size() == sim->surface("state").triangles->size());
+        CHECK_FALSE(fascia::surface::requireClosedSurface(s, "a test"));
+        CHECK(fascia::surface::enclosedVolume(s.points, s.triangles) == Approx(0.2 * 0.1 * 0.1).epsilon(1e-12));
+    }
+}
+
 TEST_CASE("A visual surface of another node's body is mapped through its state link", "[BarycentricSurfaceMapping]") {
     auto dir = freshDir("link");
     writeText(dir / "v.obj", boxSurfaceObj(Vec3(0.05, 0.02, 0.02), Vec3(0.15, 0.08, 0.08), 1));

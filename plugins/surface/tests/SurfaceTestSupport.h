@@ -29,6 +29,18 @@ struct TempFile {
     std::string str() const { return path.string(); }
 };
 
+/// The message of the input error that f throws ("" when none).
+template <class F>
+std::string inputError(F&& f) {
+    try {
+        f();
+    } catch (const core::Error& e) {
+        if (e.kind() == core::ErrorKind::Input) return e.what();
+        return "not an input error: " + std::string(e.what());
+    }
+    return "";
+}
+
 /// The unit tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1), faces outwards: volume 1/6.
 inline Positions tetPoints() { return {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}; }
 inline Triangles tetFaces() { return {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}; }

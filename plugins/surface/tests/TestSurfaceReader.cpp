@@ -7,19 +7,9 @@ using namespace fascia;
 using namespace fascia::surface;
 using fascia::surface::test::TempFile;
 
-namespace {
-/// The message of the input error that f throws ("" when none).
-template <class F>
-std::string inputError(F&& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        if (e.kind() == core::ErrorKind::Input) return e.what();
-        return "not an input error: " + std::string(e.what());
-    }
-    return "";
-}
+using fascia::surface::test::inputError;
 
+namespace {
 /// The unit cube as 6 quads (1-based OBJ), faces outwards.
 const char* kCubeObj =
     "# unit cube\n"
@@ -87,7 +77,8 @@ TEST_CASE("A pentagon face is split into a fan of 3 triangles around its first v
 TEST_CASE("Bad surface files are input errors located at their line or byte", "[TriangleSurface]") {
     SECTION("an unknown extension") {
         TempFile f("tet.ply", "ply\n");
-        CHECK_THAT(inputError([&] { readSurface(f.str()); }), Catch::Contains("unknown surface file extension '.ply'"));
+        CHECK_THAT(inputError([&] { readSurface(f.str()); }),
+                   Catch::Contains("unknown surface file extension '.ply': supported are .stl (ASCII or binary), .obj and .vtp"));
     }
     SECTION("a missing file") {
         CHECK_THAT(inputError([&] { readSurface("/nonexistent/x.obj"); }), Catch::Contains("does not exist"));
@@ -155,6 +146,17 @@ TEST_CASE("Bad surface files are input errors located at their line or byte", "[
         CHECK_THAT(inputError([&] { readSurface(f.str()); }), Catch::Contains("has no faces"));
     }
 }
+
+#if !FASCIA_SURFACE_WITH_VTK
+TEST_CASE("A .vtp surface in a build without VTK is a located error that says so", "[TriangleSurface][vtp]") {
+    TempFile f("skin.vtp", "<VTKFile type=\"PolyData\" version=\"0.1\"><PolyData/></VTKFile>\n");
+    CHECK_THAT(inputError([&] { readSurface(f.str()); }),
+               Catch::StartsWith(f.str() + ": error: this build has no VTK support: '" + f.str() + "' is a VTK XML PolyData (.vtp) surface") &&
+                   Catch::Contains("-DFASCIA_WITH_VTK=ON"));
+    // what cannot be read at all says so first, as for the other formats
+    CHECK_THAT(inputError([&] { readSurface("/nonexistent/skin.vtp"); }), Catch::Contains("does not exist"));
+}
+#endif
 
 TEST_CASE("An open, non-manifold or misoriented surface is a located error for what needs a closed one", "[TriangleSurface]") {
     SECTION("a cube with a face missing is open, located at a triangle next to the hole") {

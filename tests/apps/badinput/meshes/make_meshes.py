@@ -172,6 +172,29 @@ def vtu_zlib(block_bytes=None):
 write("vtu_zlib_good_reference.vtu", vtu_zlib())
 write("vtu_zlib_block_huge.vtu", vtu_zlib(block_bytes=2300000000))
 
+# ---- surface tools (.vtp, VTK XML PolyData): the cube of tool_open.obj, ascii -------------------
+CUBE_POINTS = ["0 0 0", "0.1 0 0", "0.1 0.1 0", "0 0.1 0", "0 0 0.1", "0.1 0 0.1", "0.1 0.1 0.1", "0 0.1 0.1"]
+CUBE_TRIANGLES = [(0, 3, 2), (0, 2, 1), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4),
+                  (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+
+
+def vtp_ascii(triangles):
+    """A .vtp of the cube's points and these triangles, one per line."""
+    conn = "".join("          %d %d %d\n" % t for t in triangles)
+    offsets = " ".join(str(3 * (i + 1)) for i in range(len(triangles)))
+    return ('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">\n  <PolyData>\n'
+            '    <Piece NumberOfPoints="8" NumberOfPolys="%d">\n      <Points>\n'
+            '        <DataArray type="Float64" Name="Points" NumberOfComponents="3" format="ascii">\n'
+            '          %s\n        </DataArray>\n      </Points>\n      <Polys>\n'
+            '        <DataArray type="Int64" Name="connectivity" format="ascii">\n%s        </DataArray>\n'
+            '        <DataArray type="Int64" Name="offsets" format="ascii">\n          %s\n        </DataArray>\n'
+            '      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n') % (len(triangles), "  ".join(CUBE_POINTS), conn, offsets)
+
+
+write("tool_open.vtp", vtp_ascii(CUBE_TRIANGLES[:-1]))  # the last triangle left out, as in tool_open.obj
+write("tool_bad_index.vtp", vtp_ascii(CUBE_TRIANGLES[:3] + [(4, 6, 40)] + CUBE_TRIANGLES[4:]))
+write("tool_is_vtu.vtp", vtu_ascii())  # a .vtu mesh named .vtp
+
 # ---- TetGen (cube1.node: 8 points; cube1.ele: 5 tetrahedra) ---------------------------------------
 node, ele = read("cube1.node"), read("cube1.ele")
 write("tg_truncated.node", edit(node, keep=6))

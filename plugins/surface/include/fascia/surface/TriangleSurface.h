@@ -1,13 +1,14 @@
 #pragma once
-/// Triangle surfaces read from STL (ASCII and binary) and Wavefront OBJ files, and the check that
+/// Triangle surfaces read from STL (ASCII and binary), Wavefront OBJ and VTK XML PolyData (.vtp,
+/// the format Fascia writes surfaces in; with VTK only) files, and the check that
 /// such a surface is closed, edge-manifold and consistently oriented (what a rigid surface tool or a
 /// signed distance needs). Pure functions: no scene component here. The library (fascia_surface) is
 /// shared, so that leaf plugins can link it (meshio for visual surfaces, contact for surface tools;
 /// docs/design.md, section 2).
 ///
 /// Every problem with the input is a fascia::core::Error (ErrorKind::Input) located where it is:
-/// "file:line: error: ..." in a text file, "file: byte N: error: ..." in a binary STL file, or at
-/// line 0 for the file as a whole.
+/// "file:line: error: ..." in a text file, "file: byte N: error: ..." in a binary STL or a .vtp
+/// file, or at line 0 for the file as a whole.
 #include "fascia/base/Error.h"
 #include "fascia/base/Types.h"
 
@@ -21,10 +22,11 @@ struct TriangleSurface {
     Positions points;       ///< vertices (file units)
     Triangles triangles;    ///< 0-based vertex indices, in file order (OBJ polygons split into fans)
     std::string file;       ///< the file it was read from ("" when built in code)
-    std::string format;     ///< "STL ASCII", "STL binary" or "OBJ"
-    /// Per triangle: the line it is on (text files) or the byte offset of its record (binary STL).
+    std::string format;     ///< "STL ASCII", "STL binary", "OBJ" or "VTK XML PolyData"
+    /// Per triangle: the line it is on (text files) or the byte offset of its record (binary STL)
+    /// or of its cell's first point (.vtp; the connectivity array's tag when it is compressed).
     std::vector<long long> origin;
-    bool byteOffsets = false;  ///< origin holds byte offsets (binary STL) rather than lines
+    bool byteOffsets = false;  ///< origin holds byte offsets (binary STL, .vtp) rather than lines
 };
 
 /// Reads a triangle surface; the format is picked by the extension (case-insensitive):
@@ -36,10 +38,17 @@ struct TriangleSurface {
 ///         last vertex read, "i/t/n" forms accepted); a polygon of n vertices becomes a fan of
 ///         n - 2 triangles (v0, v(k), v(k+1)); normals, texture coordinates, groups, materials,
 ///         smoothing groups and lines are ignored; any other keyword is a located error.
+///   .vtp  VTK XML PolyData of one Piece (ascii, binary or appended data, compressed or not),
+///         read with VTK after its headers were checked against the file
+///         (plugins/surface/VtpLayout.h): its points (not merged), its polygons as fans like OBJ
+///         faces, and its triangle strips (the degenerate triangles that join strips dropped);
+///         vertices, lines and the point and cell data are ignored. VTK's own complaints become
+///         the error's message. A build without VTK refuses .vtp files (located, saying so).
 /// Refused (located): an unknown extension, an empty file or one without triangles, a truncated or
 /// oversized binary file (its count is checked against the file size before anything is
 /// allocated), a malformed number, a non-finite coordinate, a face naming a vertex that does not
-/// exist, a triangle that uses one vertex twice.
+/// exist, a triangle that uses one vertex twice; in a .vtp also what is not VTK XML PolyData, a
+/// header that announces more than the file holds, a polygon of fewer than 3 points.
 TriangleSurface readSurface(const std::string& path);
 
 /// What is wrong with a surface, edge by edge. An undirected edge is "open" when one triangle
@@ -68,7 +77,7 @@ bool requireClosedSurface(TriangleSurface& surface, const std::string& who);
 double enclosedVolume(const Positions& points, const Triangles& triangles);
 
 /// Where triangle `tri` of the surface is: its file and line (text), or its file and byte offset
-/// (binary STL: "file: byte N: error: ...").
+/// (binary STL, .vtp: "file: byte N: error: ...").
 core::SourceLoc triangleLocation(const TriangleSurface& surface, size_t tri);
 
 } // namespace fascia::surface
