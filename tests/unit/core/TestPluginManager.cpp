@@ -7,6 +7,8 @@
 #include "fascia/plugin/Registry.h"
 
 #include <cstdlib>
+#include <iostream>
+#include <sstream>
 
 using namespace fascia;
 using namespace fascia::core;
@@ -102,12 +104,43 @@ TEST_CASE("A plugin built for another ABI is refused with what to do", "[PluginM
     REQUIRE(e);
     CHECK(e->kind() == ErrorKind::Input);
     CHECK(std::string(e->what()) == "s.xml:4: error: plugin '" + file +
-                                        "' was built for ABI 999, this is ABI 5: rebuild it against Fascia " FASCIA_VERSION_TEXT);
-    CHECK(FASCIA_ABI_VERSION == 5);
+                                        "' was built for ABI 999, this is ABI 6: rebuild it against Fascia " FASCIA_VERSION_TEXT);
+    CHECK(FASCIA_ABI_VERSION == 6);
     CHECK(Snapshot() == before);
     CHECK(loaded("fascia.test.abi") == nullptr);
     // refused again, not half-loaded
     CHECK(errorOf([&] { PluginManager::instance().loadFile(file); }));
+}
+
+TEST_CASE("A plugin built with another Eigen alignment is refused naming both values", "[PluginManager]") {
+    loadTestPlugin();
+    const Snapshot before;
+    const std::string file = testPluginFile("align", "libfascia_testplugin_align.so");
+    auto e = errorOf([&] { PluginManager::instance().loadFile(file, {"s.xml", 4}); });
+    REQUIRE(e);
+    CHECK(e->kind() == ErrorKind::Input);
+    CHECK(e->message() == "plugin '" + file + "' was built with EIGEN_MAX_ALIGN_BYTES=32, Fascia with 16: Eigen types "
+                                             "would have another layout in the plugin than in the core");
+    REQUIRE(e->notes().size() == 1);
+    CHECK_THAT(e->notes()[0], Contains("link Fascia::fascia_core"));
+    CHECK(coreBuildAbi().eigenMaxAlignBytes == 16);
+    CHECK(Snapshot() == before);
+    CHECK(loaded("fascia.test.align") == nullptr);
+}
+
+TEST_CASE("A plugin built without optimisation loads, and the loader says so", "[PluginManager]") {
+    const std::string file = testPluginFile("unoptimised", "libfascia_testplugin_unoptimised.so");
+    std::ostringstream captured;
+    std::streambuf* old = std::cerr.rdbuf(captured.rdbuf());
+    const auto e = errorOf([&] { PluginManager::instance().loadFile(file, {"s.xml", 7}); });
+    std::cerr.rdbuf(old);
+    CHECK_FALSE(e);
+    CHECK(loaded("fascia.test.unoptimised") != nullptr);
+    if (coreBuildAbi().optimised)
+        CHECK(captured.str() == "s.xml:7: warning: plugin '" + file + "' was built without optimisation: its components may "
+                                "run tens of times slower; rebuild it with -DCMAKE_BUILD_TYPE=Release (or -O2)\n");
+    else
+        CHECK(captured.str().empty());  // a core built without optimisation says nothing of its plugins
 }
 
 TEST_CASE("A shared library without the entry point is not a plugin", "[PluginManager]") {
