@@ -4,7 +4,7 @@
 /// never a crash or the kill of a hung run), print its exact first error line (the workspace path
 /// written $W), and leave no file behind: the workspace holds the same files after the run as
 /// before it. One TEST_CASE per group of the catalogue.
-#include "FasciaRunWorkspace.h"
+#include "BadInputTable.h"
 #include "fascia/plugin/Plugin.h"
 
 #include <catch2/catch.hpp>
@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using fasciaruntest::Workspace;
+using namespace fasciaruntest;
 
 const fs::path kCatalogueDir = fs::path(FASCIA_SOURCE_DIR) / "tests" / "apps" / "badinput";
 
@@ -36,38 +36,13 @@ struct Case {
     int code = -1;
 };
 
-std::string trim(const std::string& s) {
-    const size_t b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t\r");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
-std::vector<std::string> split(const std::string& s, const std::string& sep, size_t maxParts = 0) {
-    std::vector<std::string> out;
-    size_t at = 0;
-    while (maxParts == 0 || out.size() + 1 < maxParts) {
-        const size_t next = s.find(sep, at);
-        if (next == std::string::npos) break;
-        out.push_back(trim(s.substr(at, next - at)));
-        at = next + sep.size();
-    }
-    out.push_back(trim(s.substr(at)));
-    return out;
-}
-
 /// Every case of the catalogue, in file order (a malformed line fails the test that reads it).
 std::vector<Case> readCatalogue() {
-    std::ifstream in(kCatalogueDir / "catalogue.txt");
-    REQUIRE(in.good());
     std::vector<Case> cases;
-    int n = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++n;
-        if (trim(line).empty() || trim(line)[0] == '#') continue;
-        const auto f = split(line, " | ", 6);
-        INFO("catalogue.txt:" << n << ": " << line);
-        REQUIRE(f.size() == 6);
+    for (const TableRow& r : readTable(kCatalogueDir / "catalogue.txt", 6)) {
+        const auto& f = r.fields;
         Case c;
-        c.line = n;
+        c.line = r.line;
         c.group = f[0];
         c.name = f[1];
         if (f[2] != "-") c.setup = split(f[2], ", ");
@@ -77,13 +52,6 @@ std::vector<Case> readCatalogue() {
         cases.push_back(c);
     }
     return cases;
-}
-
-/// s with every `from` replaced by `to`.
-std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
-    if (from.empty()) return s;
-    for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
-    return s;
 }
 
 /// The places a message may name that differ between machines, and their names in the catalogue.
@@ -171,17 +139,6 @@ bool setUp(const std::string& action, const Workspace& w, std::string& env) {
     return true;
 }
 
-/// Every file and folder under w (relative paths), but the run's own stdout and stderr.
-std::set<std::string> snapshot(const Workspace& w) {
-    std::set<std::string> out;
-    std::error_code ec;
-    for (auto it = fs::recursive_directory_iterator(w.dir(), ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
-        const std::string rel = fs::relative(it->path(), w.dir(), ec).string();
-        if (rel != ".stdout" && rel != ".stderr") out.insert(rel);
-    }
-    return out;
-}
-
 /// Runs one case; returns false when it was skipped here.
 bool runCase(const Case& c) {
     INFO("case '" << c.name << "' (tests/apps/badinput/catalogue.txt:" << c.line << ")");
@@ -201,13 +158,7 @@ bool runCase(const Case& c) {
     else CHECK(abbreviate(r.firstErrLine(), w) == c.message);
     if (c.code != 0) {
         CHECK(r.summary().empty());
-        const std::set<std::string> after = snapshot(w);
-        std::vector<std::string> left;
-        for (const auto& f : after)
-            if (!before.count(f)) left.push_back(f);
-        INFO("left behind: " << (left.empty() ? std::string("nothing") : left.front()));
-        CHECK(left.empty());
-        CHECK(after == before);  // nothing removed either
+        checkUntouched(w, before);
     }
     return true;
 }

@@ -4,12 +4,11 @@
 /// 1 for a bad command line or output, 2 for a bad input file; never a crash or the kill of a hung
 /// run), print its exact first line (of stderr, or of stdout for "stdout: ..."), and leave the
 /// workspace as it found it. One TEST_CASE per program, as the catalogue test (TestBadInputCatalogue.cpp).
-#include "FasciaRunWorkspace.h"
+#include "BadInputTable.h"
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -19,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using fasciaruntest::Workspace;
+using namespace fasciaruntest;
 
 const fs::path kTable = fs::path(FASCIA_SOURCE_DIR) / "tests" / "apps" / "badinput" / "programs.txt";
 
@@ -38,38 +37,13 @@ struct Case {
     int code = -1;
 };
 
-std::string trim(const std::string& s) {
-    const size_t b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t\r");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
-std::vector<std::string> split(const std::string& s, const std::string& sep, size_t maxParts = 0) {
-    std::vector<std::string> out;
-    size_t at = 0;
-    while (maxParts == 0 || out.size() + 1 < maxParts) {
-        const size_t next = s.find(sep, at);
-        if (next == std::string::npos) break;
-        out.push_back(trim(s.substr(at, next - at)));
-        at = next + sep.size();
-    }
-    out.push_back(trim(s.substr(at)));
-    return out;
-}
-
 /// Every case of the table, in file order (a malformed line fails the test that reads it).
-std::vector<Case> readTable() {
-    std::ifstream in(kTable);
-    REQUIRE(in.good());
+std::vector<Case> readCases() {
     std::vector<Case> cases;
-    int n = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++n;
-        if (trim(line).empty() || trim(line)[0] == '#') continue;
-        const auto f = split(line, " | ", 6);
-        INFO("programs.txt:" << n << ": " << line);
-        REQUIRE(f.size() == 6);
+    for (const TableRow& r : readTable(kTable, 6)) {
+        const auto& f = r.fields;
         Case c;
-        c.line = n;
+        c.line = r.line;
         c.program = f[0];
         c.name = f[1];
         if (f[2] != "-") c.setup = split(f[2], ", ");
@@ -79,11 +53,6 @@ std::vector<Case> readTable() {
         cases.push_back(c);
     }
     return cases;
-}
-
-std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
-    for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
-    return s;
 }
 
 /// The table's names for places that differ between machines: $W the workspace, $SOURCE the source tree.
@@ -124,17 +93,6 @@ void setUp(const std::string& action, const Workspace& w) {
     }
 }
 
-/// Every file and folder under w (relative paths), but the run's own stdout and stderr.
-std::set<std::string> snapshot(const Workspace& w) {
-    std::set<std::string> out;
-    std::error_code ec;
-    for (auto it = fs::recursive_directory_iterator(w.dir(), ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
-        const std::string rel = fs::relative(it->path(), w.dir(), ec).string();
-        if (rel != ".stdout" && rel != ".stderr") out.insert(rel);
-    }
-    return out;
-}
-
 void runCase(const Case& c) {
     INFO(c.program << " case '" << c.name << "' (tests/apps/badinput/programs.txt:" << c.line << ")");
     const auto program = kPrograms.find(c.program);
@@ -158,19 +116,13 @@ void runCase(const Case& c) {
         CHECK(abbreviate(r.firstErrLine(), w) == c.message);
     }
     // no case writes anything: the errors write nothing, --help and the controls have nothing to write
-    const std::set<std::string> after = snapshot(w);
-    std::vector<std::string> left;
-    for (const auto& f : after)
-        if (!before.count(f)) left.push_back(f);
-    INFO("left behind: " << (left.empty() ? std::string("nothing") : left.front()));
-    CHECK(left.empty());
-    CHECK(after == before);  // nothing removed either
+    checkUntouched(w, before);
 }
 
 /// Runs every case of `program` and checks that there were some.
 void runProgram(const std::string& program) {
     int ran = 0;
-    for (const Case& c : readTable())
+    for (const Case& c : readCases())
         if (c.program == program) {
             runCase(c);
             ++ran;
@@ -182,7 +134,7 @@ void runProgram(const std::string& program) {
 } // namespace
 
 TEST_CASE("The table of program command lines covers each program's help, unknown option and missing value", "[programs]") {
-    const auto cases = readTable();
+    const auto cases = readCases();
     std::set<std::string> names;
     std::map<std::string, std::set<std::string>> kinds;  // program -> what its cases show
     for (const auto& c : cases) {
