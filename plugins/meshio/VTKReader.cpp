@@ -3,6 +3,7 @@
 #include "VTKCells.h"
 #include "VTUDataCheck.h"
 #include "VTUHeaderCheck.h"
+#include "fascia/surface/VtkXmlText.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
@@ -22,7 +23,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -124,16 +124,6 @@ private:
     std::vector<std::string> m_errors;
 };
 
-/// The byte VTK's XML parser names in its message ("... byte index N: ..."), -1 when none does.
-long long parserByte(const std::string& message) {
-    const std::string key = "byte index ";
-    const size_t p = message.find(key);
-    if (p == std::string::npos) return -1;
-    long long n = -1;
-    const char* b = message.c_str() + p + key.size();
-    const auto [end, ec] = std::from_chars(b, message.c_str() + message.size(), n);
-    return ec == std::errc() && end != b && n >= 0 ? n : -1;
-}
 
 /// A .vtu through vtkXMLUnstructuredGridReader; VTK's complaints become a located error (at the
 /// byte its XML parser names, else at the file: VTK's data errors say no more than the array).
@@ -150,7 +140,7 @@ vtkSmartPointer<vtkUnstructuredGrid> readXmlGrid(const std::string& path, VtkMes
         const std::string errors = catcher.hasErrors() ? catcher.errors() : std::string();
         const std::string message = "VTK could not read '" + path + "'" + (errors.empty() ? "" : ": " + errors) +
                                     "; check that the file is a complete VTK XML unstructured grid";
-        if (const long long byte = parserByte(errors); byte >= 0) failAtByte(path, byte, message);
+        if (const long long byte = surface::vtkParserByte(errors); byte >= 0) failAtByte(path, byte, message);
         fail(path, 0, message);
     }
     return reader->GetOutput();

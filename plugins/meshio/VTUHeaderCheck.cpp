@@ -2,6 +2,7 @@
 // is scanned for its VTKFile, Piece, Points/Cells/PointData/CellData and DataArray tags; the data
 // headers are decoded where they are (inline base64, appended raw or base64).
 #include "VTUHeaderCheck.h"
+#include "fascia/surface/VtkXmlText.h"
 
 #include "ReaderSupport.h"
 
@@ -212,25 +213,7 @@ private:
     /// `end`, padding or a character that is not base64. Strict, as VTK 9.1 decodes data (4
     /// characters at a time, every one base64).
     std::string base64Bytes(size_t at, size_t end, size_t want, bool strict = false) const {
-        std::string out;
-        unsigned buf = 0;
-        int bits = 0;
-        for (size_t p = at; p < end && out.size() < want; ++p) {
-            const char c = m_t[p];
-            int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
-                    : c == '+' ? 62 : c == '/' ? 63 : -1;
-            if (v < 0) {
-                if (!strict && (c == ' ' || c == '\n' || c == '\r' || c == '\t')) continue;
-                break;  // padding or the end of the data
-            }
-            buf = (buf << 6) | unsigned(v);
-            bits += 6;
-            if (bits >= 8) {
-                bits -= 8;
-                out += char((buf >> bits) & 0xFF);
-            }
-        }
-        return out;
+        return surface::decodeBase64(m_t, at, end, want, strict);
     }
 
     /// Uncompressed bytes the data at `at` announces, checked against what is stored up to `end`.

@@ -397,27 +397,6 @@ void Scanner::finish() const {
 
 } // namespace
 
-std::string decodeBase64(const std::string& text, size_t at, size_t end, size_t want, bool strict) {
-    std::string out;
-    unsigned buf = 0;
-    int bits = 0;
-    for (size_t p = at; p < end && out.size() < want; ++p) {
-        const char c = text[p];
-        const int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
-                      : c == '+' ? 62 : c == '/' ? 63 : -1;
-        if (v < 0) {
-            if (!strict && space(c)) continue;
-            break;  // padding, or the end of the data
-        }
-        buf = (buf << 6) | unsigned(v);
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            out += char((buf >> bits) & 0xFF);
-        }
-    }
-    return out;
-}
 
 VtpLayout scanVtp(const std::string& text, const std::string& path) { return Scanner(text, path).run(); }
 

@@ -5,6 +5,8 @@
 /// array type is a null dereference: plugins/meshio/VTUHeaderCheck.h tells the same of .vtu
 /// files), so the sizes are checked against the file first. Private to the surface library; needs
 /// no VTK (the data checks that decompress are in VtpData.cpp).
+#include "fascia/surface/VtkXmlText.h"
+
 #include <array>
 #include <string>
 #include <vector>
@@ -59,10 +61,8 @@ VtpLayout scanVtp(const std::string& text, const std::string& path);
 /// not expand to the bytes their header announces. Decompresses with VTK's compressors (VtpData.cpp).
 void checkVtpOffsets(const std::string& text, const VtpLayout& layout, const std::string& path);
 
-/// Up to `want` bytes of the base64 text of `text` from `at` to `end`, ending at padding or at a
-/// character that is not base64; spaces are skipped unless `strict` (VTK decodes its data 4
-/// characters at a time, every one base64).
-std::string decodeBase64(const std::string& text, size_t at, size_t end, size_t want, bool strict);
+/// (fascia/surface/VtkXmlText.h, shared with meshio's .vtu reader)
+using fascia::surface::decodeBase64;
 
 /// The byte of each value of an array in the file, for errors found after VTK read it: in ascii
 /// data the number's first character, in uncompressed raw data its first byte, in uncompressed

@@ -4,6 +4,7 @@
 #include "VtpReader.h"
 #include "VtkMessages.h"
 #include "VtpLayout.h"
+#include "fascia/surface/VtkXmlText.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataArraySelection.h>
@@ -14,7 +15,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include <charconv>
 #include <climits>
 #include <cmath>
 
@@ -28,16 +28,6 @@ namespace {
 
 std::string points(long long n) { return std::to_string(n) + (n == 1 ? " point" : " points"); }
 
-/// The byte VTK's XML parser names in its message ("... byte index N: ..."); -1 when none does.
-long long parserByte(const std::string& message) {
-    const std::string key = "byte index ";
-    const size_t p = message.find(key);
-    if (p == std::string::npos) return -1;
-    long long n = -1;
-    const char* b = message.c_str() + p + key.size();
-    const auto [end, ec] = std::from_chars(b, message.c_str() + message.size(), n);
-    return ec == std::errc() && end != b ? n : -1;
-}
 
 /// VTK's read of the checked bytes. The point and cell data arrays are not read: a surface needs
 /// none of them, and VTK 9.1 trusts their data (plugins/meshio/VTUDataCheck.h lists how that
@@ -55,7 +45,7 @@ vtkSmartPointer<vtkPolyData> readWithVtk(const std::string& bytes, const std::st
         const std::string text = messages.text();
         const std::string message = "VTK could not read the surface" + (text.empty() ? std::string() : ": " + text) +
                                     "; check that the file is a complete VTK XML PolyData (.vtp) file";
-        if (const long long byte = parserByte(text); byte >= 0) failAt(path, byte, message);
+        if (const long long byte = vtkParserByte(text); byte >= 0) failAt(path, byte, message);
         core::throwInputError(core::SourceLoc{path, 0}, message);
     }
     return reader->GetOutput();
