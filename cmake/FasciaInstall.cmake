@@ -35,10 +35,23 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_SOURCE_DIR}/docs DESTIN
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples DESTINATION ${FASCIA_DATA_SUBDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${FASCIA_DATA_SUBDIR})
 
-# pkg-config, relocatable: the prefix is found from the .pc file's own folder
+# pkg-config, relocatable: the prefix is found from the .pc file's own folder (install folders
+# given as absolute paths do not move with the prefix: the file names them as they are)
 set(_fascia_pc_dir ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
-file(RELATIVE_PATH FASCIA_PC_PREFIX_FROM_PCFILEDIR /root/${_fascia_pc_dir} /root)
-string(REGEX REPLACE "/$" "" FASCIA_PC_PREFIX_FROM_PCFILEDIR "${FASCIA_PC_PREFIX_FROM_PCFILEDIR}")
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(FASCIA_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH _fascia_up /root/${_fascia_pc_dir} /root)
+  string(REGEX REPLACE "/$" "" _fascia_up "${_fascia_up}")
+  set(FASCIA_PC_PREFIX "\${pcfiledir}/${_fascia_up}")
+endif()
+foreach(_d LIBDIR INCLUDEDIR DATADIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${_d}}")
+    set(FASCIA_PC_${_d} "${CMAKE_INSTALL_${_d}}")
+  else()
+    set(FASCIA_PC_${_d} "\${prefix}/${CMAKE_INSTALL_${_d}}")
+  endif()
+endforeach()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/fascia.pc.in ${PROJECT_BINARY_DIR}/fascia.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/fascia.pc DESTINATION ${_fascia_pc_dir})
 

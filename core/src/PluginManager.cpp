@@ -120,12 +120,14 @@ namespace {
 /// core was (an out-of-tree build without CMAKE_BUILD_TYPE runs its loops tens of times slower).
 void checkBuild(const PluginInfo& info, void* handle, const std::string& file, const SourceLoc& loc) {
     const BuildAbi core = coreBuildAbi();
-    if (info.build.eigenMaxAlignBytes != core.eigenMaxAlignBytes) {
-        const int seen = info.build.eigenMaxAlignBytes;
+    const bool dynamicDiffers = info.build.eigenMaxAlignBytes != core.eigenMaxAlignBytes;
+    if (dynamicDiffers || info.build.eigenMaxStaticAlignBytes != core.eigenMaxStaticAlignBytes) {
+        const char* name = dynamicDiffers ? "EIGEN_MAX_ALIGN_BYTES" : "EIGEN_MAX_STATIC_ALIGN_BYTES";
+        const int seen = dynamicDiffers ? info.build.eigenMaxAlignBytes : info.build.eigenMaxStaticAlignBytes;
+        const int ours = dynamicDiffers ? core.eigenMaxAlignBytes : core.eigenMaxStaticAlignBytes;
         dlclose(handle);
-        throwInputError(loc, "plugin '" + file + "' was built with EIGEN_MAX_ALIGN_BYTES=" + std::to_string(seen) +
-                                 ", Fascia with " + std::to_string(core.eigenMaxAlignBytes) +
-                                 ": Eigen types would have another layout in the plugin than in the core",
+        throwInputError(loc, "plugin '" + file + "' was built with " + name + "=" + std::to_string(seen) + ", Fascia with " +
+                                 std::to_string(ours) + ": Eigen types would have another layout in the plugin than in the core",
                         {"rebuild the plugin with Fascia's compile definitions: link Fascia::fascia_core "
                          "(fascia_add_plugin does), or use `pkg-config --cflags fascia`"});
     }

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <unordered_map>
 #include <sstream>
 
 namespace fascia::core {
@@ -71,10 +72,12 @@ std::string shortNumber(double v) {
 
 /// A node has one integrator: its states find the first, so a second one would never be called.
 /// Each node's error is kept in errors, under the index (in all) of its second integrator.
-void checkOneIntegratorPerNode(const Node& root, const std::vector<Component*>& all, ErrorList& errors) {
+std::vector<Component*> checkOneIntegratorPerNode(const Node& root, const std::vector<Component*>& all, ErrorList& errors) {
+    std::vector<Component*> second;
     root.visit([&](const Node& n) {
         const auto integrators = n.findAllLocal<BaseIntegrator>();
         if (integrators.size() < 2) return;
+        second.push_back(integrators[1]);
         const BaseIntegrator* first = integrators[0];
         const size_t at = size_t(std::find(all.begin(), all.end(), integrators[1]) - all.begin());
         errors.attempt(at, [&] {
@@ -84,6 +87,7 @@ void checkOneIntegratorPerNode(const Node& root, const std::vector<Component*>& 
                                  {"keep one integrator per node; a state in a child node may have its own"});
         });
     });
+    return second;
 }
 
 /// Two constraints on one node and axis, either of which prescribes its motion, fight over it: an
@@ -129,6 +133,7 @@ struct InitOrder {
     std::set<Component*> done, stopped, active;
     std::set<const Node*> stoppedIn;  ///< the nodes of the components stopped
     std::set<const Node*> above;      ///< those nodes and every node above them
+    std::unordered_map<const Component*, size_t> index;  ///< the place of each component in `all`
 
     /// Whether a component stopped in n's node, in a node above it or in a node below it.
     bool nearStopped(const Node* n) const {
@@ -142,7 +147,12 @@ struct InitOrder {
         stoppedIn.insert(c->node());
         for (const Node* n = c->node(); n && above.insert(n).second; n = n->parent()) {}
     }
-    size_t orderOf(Component* c) const { return size_t(std::find(all.begin(), all.end(), c) - all.begin()); }
+    size_t orderOf(Component* c) {
+        if (index.empty())
+            for (size_t i = 0; i < all.size(); ++i) index.emplace(all[i], i);
+        const auto it = index.find(c);
+        return it == index.end() ? all.size() : it->second;
+    }
 
     /// Whether c is initialised after the call.
     bool run(Component* c) {
@@ -204,8 +214,9 @@ void Simulation::init() {
     collect(*m_root, m_all);
     // the init phase: its errors are thrown together, in scene order, before anything else is checked
     ErrorList errors({m_root->loc().file, 0});
-    checkOneIntegratorPerNode(*m_root, m_all, errors);
-    InitOrder order{m_all, errors, {}, {}, {}, {}, {}};
+    InitOrder order{m_all, errors, {}, {}, {}, {}, {}, {}};
+    // a node with two integrators is not initialised: its components would run with the wrong one
+    for (Component* second : checkOneIntegratorPerNode(*m_root, m_all, errors)) order.stop(second);
     for (Component* c : m_all) order.run(c);
     errors.throwIfAny();
 

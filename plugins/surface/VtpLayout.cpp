@@ -90,8 +90,6 @@ private:
     int m_pieces = 0;
     std::string m_context;         ///< the section the scan is in: Points, PointData, Polys, ... ("": none)
     unsigned m_sectionsSeen = 0;   ///< the cell sections met in the Piece (a bit each)
-    unsigned long long m_fieldTuples = 0;
-    bool m_fieldTuplesKnown = false;
 };
 
 /// Refuses what is no XML at all, before looking for tags.
@@ -195,7 +193,6 @@ void Scanner::element(size_t at, std::string_view tag, size_t bodyStart, bool se
                 if (m_sectionsSeen & (1u << k)) failAt(at, "a second <" + name + "> in the Piece: a Piece has one");
                 m_sectionsSeen |= 1u << k;
             }
-            if (name == "FieldData") m_fieldTuplesKnown = false;
         }
         if (name == std::string("/") + s) m_context.clear();
     }

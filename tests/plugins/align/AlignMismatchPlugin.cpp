@@ -12,6 +12,6 @@ void registerNothing(fascia::core::Registry&) {}
 extern "C" __attribute__((visibility("default"))) const fascia::core::PluginInfo* fascia_plugin_info() {
     static const fascia::core::PluginInfo info{FASCIA_ABI_VERSION, "fascia.test.align", "0.0.1",
                                                "built with another Eigen alignment", registerNothing,
-                                               fascia::core::BuildAbi{32, 1}};
+                                               fascia::core::BuildAbi{32, 32, 1}};
     return &info;
 }

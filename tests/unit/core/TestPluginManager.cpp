@@ -124,6 +124,7 @@ TEST_CASE("A plugin built with another Eigen alignment is refused naming both va
     REQUIRE(e->notes().size() == 1);
     CHECK_THAT(e->notes()[0], Contains("link Fascia::fascia_core"));
     CHECK(coreBuildAbi().eigenMaxAlignBytes == 16);
+    CHECK(coreBuildAbi().eigenMaxStaticAlignBytes == 16);
     CHECK(Snapshot() == before);
     CHECK(loaded("fascia.test.align") == nullptr);
 }

@@ -27,13 +27,15 @@
 
 namespace fascia::core {
 
-/// Instantiated with the bound this translation unit sees: a mismatch stops the compile with the
-/// value in the compiler's message ("in instantiation of EigenAlignmentCheck<64>").
+/// Instantiated with the bounds this translation unit sees: a mismatch stops the compile with the
+/// values in the compiler's message ("in instantiation of EigenAlignmentCheck<64, 64>"). The static
+/// bound must be 16 too: EIGEN_DONT_VECTORIZE or EIGEN_DONT_ALIGN_STATICALLY make it 0, and then
+/// a Quaterniond is 8-byte aligned and core::Pose 56 bytes instead of 64.
 template <int SeenMaxAlignBytes, int SeenMaxStaticAlignBytes>
 struct EigenAlignmentCheck {
-    static_assert(SeenMaxAlignBytes == FASCIA_EIGEN_MAX_ALIGN_BYTES && SeenMaxStaticAlignBytes <= FASCIA_EIGEN_MAX_ALIGN_BYTES,
+    static_assert(SeenMaxAlignBytes == FASCIA_EIGEN_MAX_ALIGN_BYTES && SeenMaxStaticAlignBytes == FASCIA_EIGEN_MAX_ALIGN_BYTES,
                   "Fascia: this translation unit sees Eigen with another EIGEN_MAX_ALIGN_BYTES (or "
-                  "EIGEN_MAX_STATIC_ALIGN_BYTES) than libfascia_core was built with (16, "
+                  "EIGEN_MAX_STATIC_ALIGN_BYTES, e.g. through EIGEN_DONT_VECTORIZE) than libfascia_core was built with (16, "
                   "FASCIA_EIGEN_MAX_ALIGN_BYTES): Eigen types would have another layout on the two sides "
                   "of the library. Link Fascia::fascia_core (CMake) or use `pkg-config --cflags fascia`, "
                   "which define EIGEN_MAX_ALIGN_BYTES=16, and define no other value yourself "
@@ -45,8 +47,9 @@ static_assert(EigenAlignmentCheck<EIGEN_MAX_ALIGN_BYTES, EIGEN_MAX_STATIC_ALIGN_
 /// How a translation unit was compiled, in the respects that the plugin loader compares with the
 /// core (core/src/PluginManager.cpp): a plugin's is recorded in its PluginInfo by FASCIA_PLUGIN.
 struct BuildAbi {
-    int eigenMaxAlignBytes;  ///< EIGEN_MAX_ALIGN_BYTES: another value is refused
-    int optimised;           ///< 1 when built with optimisation (__OPTIMIZE__): 0 is warned about
+    int eigenMaxAlignBytes;        ///< EIGEN_MAX_ALIGN_BYTES: another value is refused
+    int eigenMaxStaticAlignBytes;  ///< EIGEN_MAX_STATIC_ALIGN_BYTES (fixed-size objects): the same
+    int optimised;                 ///< 1 when built with optimisation (__OPTIMIZE__): 0 is warned about
 };
 
 #if defined(__OPTIMIZE__)
@@ -56,7 +59,8 @@ struct BuildAbi {
 #endif
 
 /// This translation unit's BuildAbi.
-#define FASCIA_THIS_BUILD_ABI (::fascia::core::BuildAbi{EIGEN_MAX_ALIGN_BYTES, FASCIA_BUILD_OPTIMISED})
+#define FASCIA_THIS_BUILD_ABI \
+    (::fascia::core::BuildAbi{EIGEN_MAX_ALIGN_BYTES, EIGEN_MAX_STATIC_ALIGN_BYTES, FASCIA_BUILD_OPTIMISED})
 
 /// libfascia_core's own, as it was compiled.
 BuildAbi coreBuildAbi();

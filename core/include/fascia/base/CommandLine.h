@@ -23,11 +23,13 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <signal.h>  // sigaction
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -188,14 +190,18 @@ inline void requireOutputFile(const std::string& path) {
 /// A file written whole or not at all: the text goes to PATH.tmp, beside PATH so that the rename
 /// stays in one file system (as Simulation::save writes checkpoints, core/src/SimulationState.cpp),
 /// and commit() renames it over PATH. Destroyed without commit() (an error, an exception), or
-/// interrupted by SIGINT, SIGTERM or SIGHUP, it removes PATH.tmp. One at a time in a program.
+/// interrupted by SIGINT, SIGTERM or SIGHUP, it removes PATH.tmp. One at a time in a program: while
+/// it lives it handles those signals (not one the program ignores, as under nohup), then hands each
+/// to the handler it had before; afterwards the program's handlers are as they were.
 class OutputFile {
 public:
     explicit OutputFile(std::string path) : m_path(std::move(path)), m_tmp(m_path + ".tmp") {
         requireOutputFile(m_path);
         if (m_tmp.size() >= kMaxPath) throwOutputError({m_path, 0}, "output file '" + m_path + "': the path is too long");
+        if (tmpForSignals()[0]) throw std::logic_error("fascia::core::OutputFile: a second one while '" + std::string(tmpForSignals()) +
+                                                       "' is open (one at a time)");
         std::strcpy(tmpForSignals(), m_tmp.c_str());
-        for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, onSignal);
+        arm();
         m_out.open(m_tmp, std::ios::binary | std::ios::trunc);
         if (!m_out) {
             const int err = errno;
@@ -239,13 +245,31 @@ private:
         static char path[kMaxPath];
         return path;
     }
+    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+    /// The actions the program had for kSignals before arm() (restored by forget() and by a signal).
+    static struct sigaction* previous() {
+        static struct sigaction old[3];
+        return old;
+    }
+    static void arm() {
+        struct sigaction mine {};
+        mine.sa_handler = onSignal;
+        sigemptyset(&mine.sa_mask);
+        for (int i = 0; i < 3; ++i) {
+            ::sigaction(kSignals[i], nullptr, &previous()[i]);
+            if (previous()[i].sa_handler != SIG_IGN) ::sigaction(kSignals[i], &mine, nullptr);
+        }
+    }
+    /// (only async-signal-safe calls: unlink, sigaction, raise)
     static void onSignal(int s) {
         ::unlink(tmpForSignals());
-        std::signal(s, SIG_DFL);
+        for (int i = 0; i < 3; ++i)
+            if (kSignals[i] == s) ::sigaction(s, &previous()[i], nullptr);
         std::raise(s);
     }
     static void forget() {
-        for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+        for (int i = 0; i < 3; ++i)
+            if (previous()[i].sa_handler != SIG_IGN) ::sigaction(kSignals[i], &previous()[i], nullptr);
         tmpForSignals()[0] = '\0';
     }
 
