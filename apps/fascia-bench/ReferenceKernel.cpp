@@ -2,7 +2,7 @@
 // force fields' element loops (docs/performance.md, Method).
 #include "ReferenceKernel.h"
 
-#include "fascia/materials/Laws.h"
+#include "fascia/base/FastMath.h"
 
 #include <omp.h>
 
@@ -100,7 +100,7 @@ void ReferenceTLED::batchForces(size_t e0, int n, double (&fe)[4][3][kBatch]) co
             for (int j = 0; j < 3; ++j) C[i][j] = F[0][i] * F[0][j] + F[1][i] * F[1][j] + F[2][i] * F[2][j];
         const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
                          F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-        const double t = materials::invCbrt(J), iJ = t * t * t, iJ2 = iJ * iJ;
+        const double t = core::invCbrt(J), iJ = t * t * t, iJ2 = iJ * iJ;
         double Ci[3][3];
         Ci[0][0] = (C[1][1] * C[2][2] - C[1][2] * C[2][1]) * iJ2;
         Ci[1][1] = (C[0][0] * C[2][2] - C[0][2] * C[2][0]) * iJ2;

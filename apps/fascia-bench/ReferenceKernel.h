@@ -12,7 +12,7 @@
 ///   v += dt f / m, x += dt v   (v = 0 and x = X at fixed nodes),
 /// in one parallel region with one barrier. Results depend on the thread count (the sum order), not
 /// on the schedule. Written to be fast as well as plain: the element data as structure of arrays,
-/// batches of 16 elements through one vector loop (J^(-1/3) by materials::invCbrt, no pow), the
+/// batches of 16 elements through one vector loop (J^(-1/3) by core::invCbrt, fascia/base/FastMath.h, no pow), the
 /// gather and the scatter scalar.
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/Mechanics.h"

@@ -6,7 +6,7 @@
 
 static void registerExample(fascia::core::Registry& r) {
     r.add<example::CorotationalTetForceField>("CorotationalTetForceField", "corotational linear elasticity on tetrahedra (example plugin)");
-    r.add<example::Yeoh>("Yeoh", "Yeoh hyperelastic material, for HEML and TLED (example plugin)");
+    r.add<example::Yeoh>("Yeoh", fascia::materials::materialDescription<example::Yeoh>());
 }
 
 FASCIA_PLUGIN("example.plugin", "1.0.0", "an out-of-tree plugin: a force field and a material", registerExample)

@@ -5,15 +5,17 @@
 
 namespace example {
 
-/// Yeoh: W = C10 (I1bar - 3) + C20 (I1bar - 3)^2 + C30 (I1bar - 3)^3 + kappa/2 (J - 1)^2.
-/// Written the documented way (docs/design.md, "how to add a law"): isochoric() and volumetric()
-/// templated on the scalar T, parameters stored as double and converted to T once per call,
-/// constants written T(...), so that the same law runs in double and in float (and, FASCIA_HD, in
-/// CUDA device code).
-struct YeohLaw {
+/// The isochoric part of Yeoh's law, C10 x + C20 x^2 + C30 x^3 with x = I1bar - 3, composed with
+/// the volumetric part kappa/2 (J - 1)^2 that Fascia provides (fascia/materials/Volumetric.h).
+/// Written the documented way (docs/design.md, "how to add a law"): isochoric() templated on the
+/// scalar T, parameters stored as double and converted to T once per call, constants written
+/// T(...), so that the same law runs in double and in float (and, FASCIA_HD, in CUDA device code);
+/// its W as text in kEnergy, from which the registry's description is built.
+struct YeohIso {
     static constexpr unsigned uses = 0;
-    double C10 = 0, C20 = 0, C30 = 0, kappa = 0;
-    bool stressFreeAtRest() const { return true; }
+    static constexpr const char* kEnergy = "C10 (I1bar - 3) + C20 (I1bar - 3)^2 + C30 (I1bar - 3)^3";
+    static constexpr bool kStressFreeAtRest = true;
+    double C10 = 0, C20 = 0, C30 = 0;
     template <class T>
     FASCIA_HD void isochoric(const fascia::materials::InvariantsT<T>& in, fascia::materials::ResponseT<T>& r) const {
         const T C10 = T(this->C10), C20 = T(this->C20), C30 = T(this->C30);
@@ -24,17 +26,13 @@ struct YeohLaw {
         r.dI1 += dWdI1bar * t2;
         r.dJiso += dWdI1bar * in.I1 * T(-2.0 / 3.0) * t2 * t2 * t;  // d(I1 J^-2/3)/dJ = -2/3 I1 J^-5/3
     }
-    template <class T>
-    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
-        const T kappa = T(this->kappa);
-        W = T(0.5) * kappa * (J - T(1)) * (J - T(1));
-        dW = kappa * (J - T(1));
-        d2W = kappa;
-    }
 };
+using YeohLaw = fascia::materials::ComposedLaw<YeohIso, fascia::materials::QuadraticVolume>;
 
 class Yeoh : public fascia::materials::Material<YeohLaw> {
 public:
+    static constexpr const char* kTitle = "Yeoh (example plugin)";
+    static constexpr const char* kTerms = "I1bar = J^(-2/3) tr C, C = F^T F, J = det F; shear modulus 2 C10, bulk modulus kappa";
     void init() override;
     double shearModulus() const override { return 2 * m_law.C10; }
     double bulkModulus() const override { return m_law.kappa; }

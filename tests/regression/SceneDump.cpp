@@ -10,6 +10,7 @@
 #include "fascia/base/CommandLine.h"
 #include "fascia/base/Error.h"
 #include "fascia/base/InputFile.h"
+#include "fascia/materials/BuiltinMaterials.h"
 #include "fascia/sim/Simulation.h"
 
 #include <omp.h>
@@ -46,26 +47,33 @@ struct Case {
     bool deform = false;  ///< start from a smooth deformation (inline cases)
 };
 
+/// A material element of law m: the parameters these dumps have always used for the first laws
+/// (kept, so that dumps of older builds compare), else the law's example parameters (kExample).
 std::string lawXml(const std::string& m) {
-    std::string a = "youngModulus=\"3000\" poissonRatio=\"0.45\"";
-    if (m == "StVenantKirchhoff") a = "lambda=\"1500\" mu=\"1000\"";
-    if (m == "IncompressibleNeoHookean") a = "C1=\"500\"";
-    if (m == "IncompressibleMooneyRivlin") a = "C1=\"400\" C2=\"100\"";
-    if (m == "CompressibleNeoHookean") a = "C1=\"500\" mu=\"1000\" lambda=\"9000\"";
-    if (m == "CompressibleMooneyRivlin") a = "C1=\"400\" C2=\"100\" kappa=\"10000\"";
-    if (m == "TransverselyIsotropic") a += " eta=\"2000\" direction=\"0 1 1\"";
-    if (m == "Orthotropic") a += " eta=\"2000\" direction=\"0 1 0\" eta2=\"1000\" direction2=\"1 0 0\"";
-    if (m == "HolzapfelGasserOgden")
-        a = "mu=\"1000\" k1=\"3000\" k2=\"4\" dispersion=\"0.1\" bulkModulus=\"20000\" direction=\"1 0.2 0.3\" direction2=\"-0.2 1 0.4\"";
-    if (m == "ArrudaBoyce") a = "mu=\"1000\" lambdaM=\"2\" kappa=\"20000\"";
-    if (m == "UncoupledMooneyRivlin") a = "c1=\"400\" c2=\"150\" k=\"20000\"";
+    static const std::map<std::string, std::string> kParams = {
+        {"StVenantKirchhoff", "lambda=\"1500\" mu=\"1000\""},
+        {"IncompressibleNeoHookean", "C1=\"500\""},
+        {"IncompressibleMooneyRivlin", "C1=\"400\" C2=\"100\""},
+        {"CompressibleNeoHookean", "C1=\"500\" mu=\"1000\" lambda=\"9000\""},
+        {"CompressibleMooneyRivlin", "C1=\"400\" C2=\"100\" kappa=\"10000\""},
+        {"NeoHookean", "youngModulus=\"3000\" poissonRatio=\"0.45\""},
+        {"TransverselyIsotropic", "youngModulus=\"3000\" poissonRatio=\"0.45\" eta=\"2000\" direction=\"0 1 1\""},
+        {"Orthotropic", "youngModulus=\"3000\" poissonRatio=\"0.45\" eta=\"2000\" direction=\"0 1 0\" eta2=\"1000\" direction2=\"1 0 0\""},
+        {"HolzapfelGasserOgden", "mu=\"1000\" k1=\"3000\" k2=\"4\" dispersion=\"0.1\" bulkModulus=\"20000\" direction=\"1 0.2 0.3\" direction2=\"-0.2 1 0.4\""},
+        {"ArrudaBoyce", "mu=\"1000\" lambdaM=\"2\" kappa=\"20000\""},
+        {"UncoupledMooneyRivlin", "c1=\"400\" c2=\"150\" k=\"20000\""}};
+    std::string a;
+    if (auto it = kParams.find(m); it != kParams.end()) a = it->second;
+    else
+        for (const auto& [name, value] : fascia::materials::exampleParameters(m)) a += (a.empty() ? "" : " ") + name + "=\"" + value + "\"";
     return "<" + m + " name=\"mat\" " + a + "/>";
 }
 
-const char* kLaws[] = {"StVenantKirchhoff",      "IncompressibleNeoHookean", "IncompressibleMooneyRivlin",
-                       "CompressibleNeoHookean", "CompressibleMooneyRivlin", "NeoHookean",
-                       "TransverselyIsotropic",  "Orthotropic",              "HolzapfelGasserOgden",
-                       "ArrudaBoyce",            "UncoupledMooneyRivlin"};
+/// Every built-in law, from the one list (materials/BuiltinMaterials.h).
+const std::vector<std::string>& laws() {
+    static const std::vector<std::string> names = fascia::materials::builtinMaterialNames();
+    return names;
+}
 
 /// An inline scene: a mesh line, the material lines and the force field line, on a cube fixed at z = 0.
 std::string scene(const std::string& mesh, const std::string& materials, const std::string& ff, const std::string& extra = "") {
@@ -145,7 +153,7 @@ std::vector<Case> allCases(const fs::path& tmp) {
     for (auto& f : files) out.push_back({fs::relative(f, scenes).string(), f, "", 2, false});
 
     std::vector<std::pair<std::string, std::string>> inl;
-    for (const char* law : kLaws) {
+    for (const std::string& law : laws()) {
         inl.push_back({std::string("heml_tet_") + law, scene(grid("tetrahedra6"), lawXml(law), "<HEMLForceField name=\"ff\"/>")});
         inl.push_back({std::string("tled_tet_") + law, scene(grid("tetrahedra6"), lawXml(law), "<TLEDForceField name=\"ff\"/>")});
         inl.push_back({std::string("tled_hex_") + law, scene(grid("hexahedra"), lawXml(law), "<TLEDForceField name=\"ff\"/>")});

@@ -10,6 +10,7 @@
 #include "fascia/materials/ArrudaBoyce.h"
 #include "fascia/materials/Conformance.h"
 #include "fascia/materials/FastExp.h"
+#include "fascia/materials/Gent.h"
 #include "fascia/materials/HolzapfelGasserOgden.h"
 #include "fascia/materials/NeoHookean.h"
 #include "fascia/materials/UncoupledMooneyRivlin.h"
@@ -56,11 +57,12 @@ const std::map<std::string, std::pair<std::string, ParamList>>& variants() {
                                            {"bulkModulus", "20000"}, {"direction", "2 0 0"}, {"direction2", "0 1 0"}}}},
         {"AB", {"ArrudaBoyce", {{"mu", "1000"}, {"lambdaM", "2"}, {"kappa", "20000"}}}},
         {"UMR", {"UncoupledMooneyRivlin", {{"c1", "400"}, {"c2", "150"}, {"k", "20000"}}}},
+        {"GENT", {"Gent", {{"mu", "1000"}, {"Jm", "2"}, {"k", "20000"}}}},
     };
     return v;
 }
 
-const char* const kVariants[] = {"HGO2", "HGO1", "AB", "UMR"};
+const char* const kVariants[] = {"HGO2", "HGO1", "AB", "UMR", "GENT"};
 
 void readParams(core::Component& c, const ParamList& params, int line = 1) {
     for (const auto& [k, v] : params) {
@@ -75,6 +77,7 @@ BaseMaterial& addLaw(core::Node& n, const std::string& type, const std::string& 
     if (type == "HolzapfelGasserOgden") m = &n.add<materials::HolzapfelGasserOgden>(name);
     else if (type == "ArrudaBoyce") m = &n.add<materials::ArrudaBoyce>(name);
     else if (type == "UncoupledMooneyRivlin") m = &n.add<materials::UncoupledMooneyRivlin>(name);
+    else if (type == "Gent") m = &n.add<materials::Gent>(name);
     else if (type == "NeoHookean") m = &n.add<materials::NeoHookean>(name);
     else throw std::runtime_error("unknown law " + type);
     m->setClassName(type);
@@ -185,6 +188,10 @@ double directEnergy(const std::string& variant, const Mat3& F) {
         for (int i = 1; i <= 5; ++i) W += mu * C[i - 1] / std::pow(lm, 2 * i - 2) * (std::pow(k.I1b, i) - std::pow(3.0, i));
         return W;
     }
+    if (type == "Gent") {
+        const double mu = param(variant, "mu"), Jm = param(variant, "Jm");
+        return -0.5 * mu * Jm * std::log(1 - (k.I1b - 3) / Jm) + 0.5 * param(variant, "k") * lnJ * lnJ;
+    }
     return param(variant, "c1") * (k.I1b - 3) + param(variant, "c2") * (k.I2b - 3) + 0.5 * param(variant, "k") * lnJ * lnJ;
 }
 
@@ -244,6 +251,14 @@ Mat3 umrCauchy(const Mat3& F, double c1, double c2, double k) {
     const double J = F.determinant();
     const Mat3 Bb = std::pow(J, -2.0 / 3.0) * F * F.transpose();
     return 2 / J * dev((c1 + c2 * Bb.trace()) * Bb - c2 * Bb * Bb) + k * std::log(J) / J * Mat3::Identity();
+}
+
+/// Gent (Gent 1996): sigma = 2/J w dev(Bbar) + k ln J / J I, w = dW/dI1bar = mu/2 / (1 - (I1bar - 3)/Jm).
+Mat3 gentCauchy(const Mat3& F, double mu, double Jm, double k) {
+    const double J = F.determinant();
+    const Mat3 Bb = std::pow(J, -2.0 / 3.0) * F * F.transpose();
+    const double w = 0.5 * mu / (1 - (Bb.trace() - 3) / Jm);
+    return 2 / J * w * dev(Bb) + k * std::log(J) / J * Mat3::Identity();
 }
 
 double vonMises(const Mat3& s) {
@@ -599,6 +614,63 @@ TEST_CASE("uncoupled Mooney-Rivlin: k ln J / J in pure dilatation and 2 (c1 + c2
     }
 }
 
+TEST_CASE("Gent: mu gamma / (1 - gamma^2/Jm) in simple shear, the neo-Hookean as Jm grows, finite past the lock", "[Gent]") {
+    const double mu = 1000, Jm = 2, k = 20000;
+    core::Node root("root");
+    const BaseMaterial& m = addVariant(root, "GENT");
+    CHECK(m.shearModulus() == mu);
+    CHECK(m.bulkModulus() == k);
+    SECTION("simple shear (Gent 1996): I1bar - 3 = gamma^2") {
+        for (double g : {0.3, 1.0, 1.35}) {
+            const Mat3 s = lawCauchy(m, simpleShear(g));
+            const double tau = mu * g / (1 - g * g / Jm);
+            CAPTURE(g);
+            CHECK(s(0, 1) == Approx(tau).epsilon(1e-11));
+            CHECK(s(0, 0) - s(1, 1) == Approx(tau * g).epsilon(1e-11));
+            CHECK(std::abs(s(1, 1) - s(2, 2)) < 1e-11 * tau);
+        }
+    }
+    SECTION("a general compressible deformation") {
+        for (int i = 0; i + 1 < kTestF; ++i) {
+            const Mat3 F = testF(i), ref = gentCauchy(F, mu, Jm, k);
+            CAPTURE(i);
+            CHECK((lawCauchy(m, F) - ref).norm() < 1e-10 * ref.norm());
+        }
+    }
+    SECTION("Jm -> infinity: the deviatoric stress of the neo-Hookean mu/2 (I1bar - 3)") {
+        const BaseMaterial& big = addMaterial(root, "Gent", {{"mu", "1000"}, {"Jm", "1e9"}, {"k", "20000"}}, "big");
+        const BaseMaterial& nh = addMaterial(root, "NeoHookean", {{"mu", "1000"}, {"kappa", "20000"}}, "nh");
+        for (int i = 0; i + 1 < kTestF; ++i) {
+            const Mat3 a = dev(lawCauchy(big, testF(i))), b = dev(lawCauchy(nh, testF(i)));
+            CAPTURE(i);
+            CHECK((a - b).norm() < 1e-7 * b.norm());
+        }
+    }
+    SECTION("past the lock: the second-order Taylor polynomial in x = (I1bar - 3)/Jm at x = 0.99") {
+        const double a = 0.5 * mu * Jm, xL = 0.99;
+        const auto f = [&](double x) { return -a * std::log(1 - x); };
+        double prevTau = 0;
+        for (double g : {1.30, 1.40, 1.45, 2.0, 3.0, 10.0}) {
+            const double x = g * g / Jm;
+            const double ref = x <= xL ? f(x) : f(xL) + a / (1 - xL) * (x - xL) + 0.5 * a / ((1 - xL) * (1 - xL)) * (x - xL) * (x - xL);
+            const Mat3 s = lawCauchy(m, simpleShear(g));
+            CAPTURE(g, x);
+            CHECK(energyOfF(m, simpleShear(g)) == Approx(ref).epsilon(1e-10));
+            CHECK(std::isfinite(s.norm()));
+            CHECK(s(0, 1) > prevTau);  // still stiffening: the extension is convex
+            prevTau = s(0, 1);
+            const auto rep = conf::checkLawDerivatives(m, conf::invariantsOf(simpleShear(g)), 0.4);
+            CHECK(rep.maxRelError < 1e-7);
+        }
+        // W and dW/dI1 continuous at the switch
+        const double g0 = std::sqrt(xL * Jm);
+        const Invariants lo = conf::invariantsOf(simpleShear(g0 * (1 - 1e-9))), hi = conf::invariantsOf(simpleShear(g0 * (1 + 1e-9)));
+        const Response rl = conf::evaluateOne(m, lo, 0.4), rh = conf::evaluateOne(m, hi, 0.4);
+        CHECK(rh.W == Approx(rl.W).epsilon(1e-6));
+        CHECK(rh.dI1 == Approx(rl.dI1).epsilon(1e-6));
+    }
+}
+
 // ---- through the force fields ---------------------------------------------------------------------
 
 TEST_CASE("the new laws pass the conformance harness through HEMLForceField", "[HEMLForceField][conformance]") {
@@ -655,6 +727,8 @@ TEST_CASE("TLEDForceField and HEMLForceField give the closed-form stresses of th
         {"AB", testF(0), abCauchy(testF(0), 1000, 2, 20000)},
         {"UMR", simpleShear(0.7), umrCauchy(simpleShear(0.7), 400, 150, 20000)},
         {"UMR", testF(1), umrCauchy(testF(1), 400, 150, 20000)},
+        {"GENT", simpleShear(0.9), gentCauchy(simpleShear(0.9), 1000, 2, 20000)},
+        {"GENT", testF(0), gentCauchy(testF(0), 1000, 2, 20000)},
     };
     for (const Case& c : cases) {
         CAPTURE(c.variant, c.F);
@@ -754,15 +828,17 @@ TEST_CASE("the registry lists the new laws with their energies in full", "[Holza
     core::PluginManager::instance().load("fascia_materials");
     const auto& reg = core::Registry::instance();
     const std::map<std::string, std::vector<std::string>> expected = {
-        {"HolzapfelGasserOgden", {"mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2",
+        {"HolzapfelGasserOgden", {"mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + k/2 (ln J)^2",
                                   "E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1)", "max(E, 0)"}},
         {"ArrudaBoyce", {"mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2", "1/2, 1/20, 11/1050, 19/7000, 519/673750"}},
-        {"UncoupledMooneyRivlin", {"c1 (I1bar - 3) + c2 (I2bar - 3) + k/2 (ln J)^2"}},
+        {"UncoupledMooneyRivlin", {"C1 (I1bar - 3) + C2 (I2bar - 3) + k/2 (ln J)^2", "C1 = c1, C2 = c2"}},
+        {"Gent", {"-mu Jm/2 ln(1 - (I1bar - 3)/Jm) + k/2 (ln J)^2", "beyond I1bar - 3 = 0.99 Jm"}},
     };
     const std::map<std::string, std::vector<std::string>> params = {
         {"HolzapfelGasserOgden", {"mu", "k1", "k2", "dispersion", "bulkModulus", "direction", "direction2"}},
         {"ArrudaBoyce", {"mu", "lambdaM", "kappa"}},
         {"UncoupledMooneyRivlin", {"c1", "c2", "k"}},
+        {"Gent", {"mu", "Jm", "k"}},
     };
     for (const auto& [name, parts] : expected) {
         CAPTURE(name);

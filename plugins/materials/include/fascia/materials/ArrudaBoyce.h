@@ -5,24 +5,23 @@
 
 namespace fascia::materials {
 
-/// Arruda & Boyce (1993, J. Mech. Phys. Solids 41) eight-chain model, by the five-term series of the
-/// inverse Langevin function (the form NiftySim uses, Johnsen et al. 2015, Int. J. CARS 10):
-///   W = mu sum_{i=1}^{5} C_i / lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2,
-///   C = 1/2, 1/20, 11/1050, 19/7000, 519/673750,   I1bar = J^(-2/3) I1,
-/// lambdaM the locking stretch (> 1; the truncated series stiffens as the chains near it but does
-/// not lock). Volumetric part kappa/2 (J - 1)^2, as NeoHookeanLaw: lambdaM -> infinity gives the
-/// neo-Hookean mu/2 (I1bar - 3) + kappa/2 (J - 1)^2.
+/// The isochoric part of the Arruda & Boyce (1993, J. Mech. Phys. Solids 41) eight-chain model, by
+/// the five-term series of the inverse Langevin function (the form NiftySim uses, Johnsen et al.
+/// 2015, Int. J. CARS 10), with C_i = 1/2, 1/20, 11/1050, 19/7000, 519/673750 and I1bar =
+/// J^(-2/3) I1; lambdaM the locking stretch (> 1; the truncated series stiffens as the chains near
+/// it but does not lock). With the volumetric part kappa/2 (J - 1)^2, as NeoHookeanLaw:
+/// lambdaM -> infinity gives the neo-Hookean mu/2 (I1bar - 3) + kappa/2 (J - 1)^2.
 /// I1bar^i - 3^i is evaluated as S_i = I1bar S_{i-1} + 3^(i-1) (I1bar - 3), S_1 = I1bar - 3, which
 /// keeps W accurate near rest (no cancellation of large terms). With w = dW/dI1bar =
 /// mu sum_i i C_i I1bar^(i-1) / lambdaM^(2i-2):  dI1 = J^(-2/3) w,  dJiso = -2/(3 J) w I1bar.
 /// Stress-free at rest. Small-strain shear modulus 2 w(3) = mu (1 + 3/(5 lm^2) + 99/(175 lm^4) +
 /// 513/(875 lm^6) + 42039/(67375 lm^8)) (initialShearModulus), not mu. No libm: invCbrt only.
-struct ArrudaBoyceLaw {
+struct ArrudaBoyceIso {
     static constexpr unsigned uses = 0;
+    static constexpr const char* kEnergy = "mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i)";
+    static constexpr bool kStressFreeAtRest = true;
     double mu = 0;       ///< Pa (the shear modulus only in the limit lambdaM -> infinity)
     double lambdaM = 0;  ///< locking stretch, > 1
-    double kappa = 0;    ///< bulk modulus (Pa)
-    bool stressFreeAtRest() const { return true; }
     /// The coefficients mu C_i / lambdaM^(2i-2) of W, i = 1..5 (computed in double, then rounded to T).
     template <class T>
     FASCIA_HD void coefficients(T a[5]) const {
@@ -54,14 +53,8 @@ struct ArrudaBoyceLaw {
         r.dI1 += w * t2;
         r.dJiso += -T(2.0 / 3.0) * w * x * iJ;
     }
-    template <class T>
-    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
-        const T kappa = T(this->kappa);
-        W = T(0.5) * kappa * (J - T(1)) * (J - T(1));
-        dW = kappa * (J - T(1));
-        d2W = kappa;
-    }
 };
+using ArrudaBoyceLaw = ComposedLaw<ArrudaBoyceIso, QuadraticVolume>;
 
 /// The Arruda-Boyce material (see ArrudaBoyceLaw for W and its derivatives). Parameters: mu,
 /// lambdaM (the locking stretch, > 1) and kappa (bulk modulus). shearModulus() is the small-strain
@@ -72,11 +65,9 @@ public:
     static constexpr const char* kName = "ArrudaBoyce";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;lambdaM=2;kappa=20000";
-    static constexpr const char* kDescription =
-        "Arruda-Boyce eight-chain mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2, C = 1/2, 1/20, 11/1050, 19/7000, 519/673750 (Arruda-Boyce 1993, NiftySim)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = mu sum_{i=1}^{5} C_i/lambdaM^(2i-2) (I1bar^i - 3^i) + kappa/2 (J - 1)^2, C_i = 1/2, 1/20, 11/1050, 19/7000, 519/673750, I1bar = J^(-2/3) tr C, J = det F (Arruda and Boyce 1993, five-term series); small-strain shear modulus mu (1 + 3/(5 lambdaM^2) + 99/(175 lambdaM^4) + 513/(875 lambdaM^6) + 42039/(67375 lambdaM^8)); ViscoelasticProny parts: isochoric the series, volumetric kappa/2 (J - 1)^2";
+    static constexpr const char* kTitle = "Arruda-Boyce eight-chain (Arruda and Boyce 1993, five-term series as NiftySim)";
+    static constexpr const char* kTerms =
+        "C_i = 1/2, 1/20, 11/1050, 19/7000, 519/673750, I1bar = J^(-2/3) tr C, J = det F; small-strain shear modulus mu (1 + 3/(5 lambdaM^2) + 99/(175 lambdaM^4) + 513/(875 lambdaM^6) + 42039/(67375 lambdaM^8))";
     void init() override {
         m_law.mu = m_mu.get();
         m_law.lambdaM = m_lambdaM.get();

@@ -1,9 +1,12 @@
 #pragma once
-/// The one list of built-in materials. Each entry is a component class derived from Material<Law>
-/// with `static constexpr const char* kName, kDescription` (one line, for --list), `kEnergy` (W in
-/// full with its invariants and parameter conversions, which --describe prints) and `kExample`;
-/// the list drives:
-///   - the registration of the materials plugin (MaterialsPlugin.cpp: --list, --describe);
+/// The one list of built-in materials. Each entry is a component class derived from Material<Law>,
+/// Law a ComposedLaw (ComposedLaw.h), with `static constexpr const char* kName`, `kTitle` (the
+/// law's name and source), `kTerms` (its invariants, parameter conversions and moduli) and
+/// `kExample`; the list drives:
+///   - the registration of the materials plugin (MaterialsPlugin.cpp: --list, --describe, with the
+///     description built by materialDescription from the law's parts);
+///   - the scene dump (tests/regression/SceneDump.cpp), the fuzz dictionary check and the
+///     materials doc check (plugins/materials/tests/TestLawLists.cpp);
 ///   - the inlined element loops of HEMLForceField and TLEDForceField (fascia/elements/LawDispatch.h);
 ///   - the test factories and conformance sweeps (createBuiltinMaterial, forEachBuiltinMaterial).
 /// Adding a built-in law: one header with its law struct and component (see docs/design.md, "how to
@@ -11,6 +14,7 @@
 #include "fascia/materials/ArrudaBoyce.h"
 #include "fascia/materials/CompressibleMooneyRivlin.h"
 #include "fascia/materials/CompressibleNeoHookean.h"
+#include "fascia/materials/Gent.h"
 #include "fascia/materials/HolzapfelGasserOgden.h"
 #include "fascia/materials/IncompressibleMooneyRivlin.h"
 #include "fascia/materials/IncompressibleNeoHookean.h"
@@ -27,7 +31,7 @@
 
 namespace fascia::materials {
 
-/// A compile-time list of material component classes (each with kName, kDescription, kEnergy and kExample).
+/// A compile-time list of material component classes (each with kName, kTitle, kTerms and kExample).
 template <class... Ms>
 struct MaterialList {
     static constexpr size_t size = sizeof...(Ms);
@@ -36,7 +40,7 @@ struct MaterialList {
 using BuiltinMaterials = MaterialList<StVenantKirchhoff, IncompressibleNeoHookean, IncompressibleMooneyRivlin,
                                       CompressibleNeoHookean, CompressibleMooneyRivlin, NeoHookean,
                                       TransverselyIsotropic, Orthotropic, HolzapfelGasserOgden, ArrudaBoyce,
-                                      UncoupledMooneyRivlin>;
+                                      UncoupledMooneyRivlin, Gent>;
 
 namespace detail {
 template <class F, class... Ms>

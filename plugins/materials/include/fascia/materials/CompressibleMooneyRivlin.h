@@ -4,17 +4,17 @@
 namespace fascia::materials {
 
 /// Compressible Mooney-Rivlin with the isochoric/volumetric split of HEML eq. (21)-(25):
-///   W = C1 (I1bar - 3) + C2 (I2bar - 3) + kappa/2 (J - 1)^2
-/// (volumetric term kappa/2 (J - 1)^2). Stress-free at rest; shear modulus 2 (C1 + C2), bulk kappa.
+/// MooneyRivlinIso plus QuadraticVolume (Laws.h). Stress-free at rest; shear modulus 2 (C1 + C2),
+/// bulk kappa.
 class CompressibleMooneyRivlin : public Material<CompressibleMooneyRivlinLaw> {
 public:
     static constexpr const char* kName = "CompressibleMooneyRivlin";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "C1=400;C2=100;kappa=20000";
-    static constexpr const char* kDescription = "Mooney-Rivlin C1 (I1bar - 3) + C2 (I2bar - 3) + kappa/2 (J - 1)^2";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = C1 (I1bar - 3) + C2 (I2bar - 3) + kappa/2 (J - 1)^2, I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2, I1 = tr C, I2 = (I1^2 - tr(C^2))/2, C = F^T F, J = det F (HEML eq. (21)-(25)); shear modulus 2 (C1 + C2), bulk modulus kappa; ViscoelasticProny parts: isochoric C1 (I1bar - 3) + C2 (I2bar - 3), volumetric kappa/2 (J - 1)^2";
+    static constexpr const char* kTitle = "Mooney-Rivlin (HEML eq. (21)-(25))";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2, I1 = tr C, I2 = (I1^2 - tr(C^2))/2, C = F^T F, J = det F; shear modulus 2 (C1 + C2), bulk modulus kappa";
     void init() override;
     double shearModulus() const override { return 2.0 * (m_law.C1 + m_law.C2); }
     double bulkModulus() const override { return m_law.kappa; }

@@ -3,7 +3,7 @@
 
 namespace fascia::materials {
 
-/// Compressible neo-Hookean of HEML eq. (26): W = C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2.
+/// Compressible neo-Hookean of HEML eq. (26): LinearI1Iso plus HemlLogVolume (Laws.h).
 /// Moduli: mu and lambda (C1 defaults to mu/2), or youngModulus and poissonRatio (then mu and
 /// lambda are the Lame coefficients and C1 = mu/2). A C1 other than mu/2 leaves a residual stress
 /// (2 C1 - mu) I at rest (warned). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
@@ -12,10 +12,10 @@ public:
     static constexpr const char* kName = "CompressibleNeoHookean";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;lambda=9000";
-    static constexpr const char* kDescription = "compressible neo-Hookean C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (HEML eq. (26))";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = C1 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, I1 = tr C, C = F^T F, J = det F, C1 = mu/2 unless given (HEML eq. (26)); with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), lambda = E nu/((1 + nu)(1 - 2 nu)); ViscoelasticProny parts: isochoric C1 (I1 - 3) - 2 C1 ln J, volumetric lambda/2 (ln J)^2 - (mu - 2 C1) ln J";
+    static constexpr const char* kTitle = "compressible neo-Hookean (HEML eq. (26))";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1 = tr C, C = F^T F, J = det F, C1 = mu/2 unless given; with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), lambda = E nu/((1 + nu)(1 - 2 nu))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -10,17 +10,15 @@
 
 namespace fascia::materials {
 
-/// Holzapfel, Gasser & Ogden (2000, J. Elasticity 61) with the fibre dispersion of Gasser, Ogden
-/// & Holzapfel (2006, J. R. Soc. Interface 3):
-///   W = mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2,
+/// The isochoric part of Holzapfel, Gasser & Ogden (2000, J. Elasticity 61) with the fibre
+/// dispersion of Gasser, Ogden & Holzapfel (2006, J. R. Soc. Interface 3), composed with FEBio's
+/// volumetric part k/2 (ln J)^2 (LogVolume: it grows without bound as J -> 0), where
 ///   E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1),   I1bar = J^(-2/3) I1, I_ibar = J^(-2/3) I_i,
 /// with I4 = a0.C a0, I6 = b0.C b0, dispersion 0 <= kappa <= 1/3 (0: all fibres along a0, 1/3:
 /// isotropic fibres), <E> = max(E, 0).
 /// - Fibres act only in tension, by an exact switch (the Macaulay bracket <E>): the fibre term and
 ///   its first derivative k1 E exp(k2 E^2) are continuous at E = 0, so W is C^1 (its second
 ///   derivative jumps from 0 to k1 there).
-/// - Volumetric part K/2 (ln J)^2 (as in FEBio's uncoupled laws): it grows without bound as
-///   J -> 0; bulk modulus K.
 /// - k2 = 0 is allowed (fibres k1/2 <E>^2): the fibre energy is written k1/2 <E>^2 (e^x - 1)/x with
 ///   x = k2 <E>^2 (fastExprel), exact at x = 0 and without cancellation near it.
 /// - One fibre family: `twoFamilies` false, and E_6 is taken as 0 (I6 is still read; the second
@@ -29,16 +27,16 @@ namespace fascia::materials {
 /// w4 = (1 - 3 kappa) g4, w6 = (1 - 3 kappa) g6, g_i = k1 <E_i> exp(k2 <E_i>^2):
 ///   dI1 = J^(-2/3) w1, dI4 = J^(-2/3) w4, dI6 = J^(-2/3) w6,
 ///   dJiso = -2/(3 J) (w1 I1bar + w4 I4bar + w6 I6bar).
-/// Stress-free at rest (E_i = 0 there). No libm: invCbrt, fastExp, fastExprel, fastLog.
-struct HolzapfelGasserOgdenLaw {
+/// Stress-free at rest (E_i = 0 there). No libm: invCbrt, fastExp, fastExprel (and fastLog in U).
+struct HolzapfelGasserOgdenIso {
     static constexpr unsigned uses = BaseMaterial::UsesI4 | BaseMaterial::UsesI6;
+    static constexpr const char* kEnergy = "mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1]";
+    static constexpr bool kStressFreeAtRest = true;
     double mu = 0;          ///< shear modulus of the matrix (Pa)
     double k1 = 0;          ///< fibre stiffness (Pa)
     double k2 = 0;          ///< fibre exponent (dimensionless)
     double dispersion = 0;  ///< kappa in [0, 1/3]
-    double K = 0;           ///< bulk modulus of K/2 (ln J)^2 (Pa)
     bool twoFamilies = false;
-    bool stressFreeAtRest() const { return true; }
     template <class T>
     FASCIA_HD void isochoric(const InvariantsT<T>& in, ResponseT<T>& r) const {
         const T mu = T(this->mu), k1 = T(this->k1), k2 = T(this->k2);
@@ -57,15 +55,8 @@ struct HolzapfelGasserOgdenLaw {
         r.dI6 += w6 * t2;
         r.dJiso += -T(2.0 / 3.0) * (w1 * I1b + w4 * I4b + w6 * I6b) * iJ;
     }
-    template <class T>
-    FASCIA_HD void volumetric(T J, T& W, T& dW, T& d2W) const {
-        const T K = T(this->K);
-        const T lnJ = fastLog(J), iJ = T(1) / J;
-        W = T(0.5) * K * lnJ * lnJ;
-        dW = K * lnJ * iJ;
-        d2W = K * (T(1) - lnJ) * iJ * iJ;
-    }
 };
+using HolzapfelGasserOgdenLaw = ComposedLaw<HolzapfelGasserOgdenIso, LogVolume>;
 
 /// The Holzapfel-Gasser-Ogden material (see HolzapfelGasserOgdenLaw for W and its derivatives).
 /// Parameters: mu, k1, k2, dispersion (FEBio's "kappa"), bulkModulus (FEBio's "k"), direction
@@ -73,7 +64,7 @@ struct HolzapfelGasserOgdenLaw {
 /// two directions themselves. Force fields may take the directions per element from mesh cell
 /// arrays instead; the second family exists only when direction2 is set here (a mesh array of
 /// second directions alone does not switch it on). Stress-free at rest; small-strain shear modulus
-/// mu, bulk modulus K.
+/// mu, bulk modulus k = bulkModulus.
 /// The stable time step (from waveSpeed) is a rest value: the fibres stiffen exponentially, so
 /// large fibre strains need a smaller step than the rest estimate.
 class HolzapfelGasserOgden : public Material<HolzapfelGasserOgdenLaw> {
@@ -81,17 +72,16 @@ public:
     static constexpr const char* kName = "HolzapfelGasserOgden";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;k1=3000;k2=4;dispersion=0.1;bulkModulus=20000;direction=1 0.2 0.3;direction2=-0.2 1 0.4";
-    static constexpr const char* kDescription =
-        "Holzapfel-Gasser-Ogden mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2, E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), fibres in tension only (<E> = max(E, 0)), one or two families, kappa = dispersion, K = bulkModulus (Gasser 2006)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = mu/2 (I1bar - 3) + k1/(2 k2) sum_{i=4,6} [exp(k2 <E_i>^2) - 1] + K/2 (ln J)^2, E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), <E> = max(E, 0), I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, I6bar = J^(-2/3) b0.C b0 (i = 6 only with direction2), kappa = dispersion, K = bulkModulus, k2 = 0: k1/2 <E_i>^2 (Gasser, Ogden and Holzapfel 2006); ViscoelasticProny parts: isochoric all but K/2 (ln J)^2, volumetric K/2 (ln J)^2";
+    static constexpr const char* kTitle =
+        "Holzapfel-Gasser-Ogden (Gasser, Ogden and Holzapfel 2006), fibres in tension only, one or two families";
+    static constexpr const char* kTerms =
+        "E_i = kappa (I1bar - 3) + (1 - 3 kappa)(I_ibar - 1), <E> = max(E, 0), I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, I6bar = J^(-2/3) b0.C b0 (i = 6 only with direction2), kappa = dispersion, k = bulkModulus, k2 = 0: k1/2 <E_i>^2";
     void init() override {
         m_law.mu = m_mu.get();
         m_law.k1 = m_k1.get();
         m_law.k2 = m_k2.get();
         m_law.dispersion = m_dispersion.get();
-        m_law.K = m_bulk.get();
+        m_law.k = m_bulk.get();
         m_a0 = unitDirection(*this, m_dir);
         m_law.twoFamilies = m_dir2.isSet();
         m_b0 = m_a0;
@@ -103,15 +93,15 @@ public:
         }
     }
     double shearModulus() const override { return m_law.mu; }
-    double bulkModulus() const override { return m_law.K; }
-    /// Upper bound of the dilatational wave speed at rest: sqrt((K + 4/3 mu + n eta)/rho), with
+    double bulkModulus() const override { return m_law.k; }
+    /// Upper bound of the dilatational wave speed at rest: sqrt((k + 4/3 mu + n eta)/rho), with
     /// eta = 2 k1 (1 - 3 kappa)^2 the small-strain fibre stiffness (each family's energy is
     /// eta (a0.dev(eps) a0)^2 there, as TransverselyIsotropic's eta/4 (I4bar - 1)^2) and n the number
     /// of families.
     double waveSpeed(double rho) const override {
         const double b = 1.0 - 3.0 * m_law.dispersion;
         const double eta = 2.0 * m_law.k1 * b * b * (m_law.twoFamilies ? 2.0 : 1.0);
-        return std::sqrt((m_law.K + 4.0 / 3.0 * m_law.mu + eta) / rho);
+        return std::sqrt((m_law.k + 4.0 / 3.0 * m_law.mu + eta) / rho);
     }
     const Vec3* fibreDirection(int which) const override {
         return which == 0 ? &m_a0 : which == 1 ? &m_b0 : nullptr;
@@ -124,7 +114,7 @@ public:
     core::Param<double> m_k1{this, core::ParamSpec("k1").unit("Pa").min(0).required().help("fibre stiffness k1 of k1/(2 k2) [exp(k2 <E>^2) - 1]")};
     core::Param<double> m_k2{this, core::ParamSpec("k2").min(0).required().help("dimensionless fibre exponent k2 (0: quadratic fibres k1/2 <E>^2)")};
     core::Param<double> m_dispersion{this, core::ParamSpec("dispersion").min(0).max(1.0 / 3.0).help("fibre dispersion kappa of E = kappa (I1bar - 3) + (1 - 3 kappa)(I4bar - 1): 0 aligned, 1/3 isotropic (FEBio's kappa)"), 0.0};
-    core::Param<double> m_bulk{this, core::ParamSpec("bulkModulus").unit("Pa").above(0).required().help("bulk modulus K of K/2 (ln J)^2 (FEBio's k)")};
+    core::Param<double> m_bulk{this, core::ParamSpec("bulkModulus").unit("Pa").above(0).required().help("bulk modulus k of k/2 (ln J)^2 (FEBio's k)")};
     core::Param<Vec3> m_dir{this, core::ParamSpec("direction").help("first fibre direction a0 (I4 = a0.C a0) in the reference configuration (normalised)"), Vec3(0, 0, 1)};
     core::Param<Vec3> m_dir2{this, core::ParamSpec("direction2").help("second fibre direction b0 (I6 = b0.C b0, normalised); unset: one fibre family")};
 

@@ -3,7 +3,7 @@
 
 namespace fascia::materials {
 
-/// The HEML paper's "incompressible" neo-Hookean (Table 3): W = C1 (I1 - 3), no volumetric term.
+/// The HEML paper's "incompressible" neo-Hookean (Table 3): LinearI1Iso, no volumetric part (Laws.h).
 /// Incompressible only in the paper's sense: nothing enforces J = 1 and the rest state carries
 /// the stress S = 2 C1 I (not stress-free). Shear modulus 2 C1; bulk modulus reported as 0.
 class IncompressibleNeoHookean : public Material<IncompressibleNeoHookeanLaw> {
@@ -11,10 +11,10 @@ public:
     static constexpr const char* kName = "IncompressibleNeoHookean";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "C1=500";
-    static constexpr const char* kDescription = "HEML's neo-Hookean C1 (I1 - 3), no volumetric term (HEML Table 3)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = C1 (I1 - 3), I1 = tr C, C = F^T F; no volumetric term and not stress-free at rest (S = 2 C1 I at C = I); ViscoelasticProny relaxes C1 (I1 - 3) - 2 C1 ln J (apply=\"isochoric\" only) (HEML Table 3)";
+    static constexpr const char* kTitle = "HEML's neo-Hookean, no volumetric term (HEML Table 3)";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1 = tr C, C = F^T F; not stress-free at rest (S = 2 C1 I at C = I): ViscoelasticProny only with apply=\"isochoric\"";
     void init() override { m_law.C1 = m_C1.get(); }
     double shearModulus() const override { return 2.0 * m_law.C1; }
     double bulkModulus() const override { return 0.0; }

@@ -3,18 +3,18 @@
 
 namespace fascia::materials {
 
-/// Neo-Hookean with the isochoric split (TLED eq. (9), (31)-(32) without fibres):
-///   W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2.
+/// Neo-Hookean with the isochoric split (TLED eq. (9), (31)-(32) without fibres): NeoHookeanLaw,
+/// NeoHookeanIso plus QuadraticVolume (Laws.h; W is their kEnergy texts).
 /// Moduli: mu and kappa, or youngModulus and poissonRatio. Stress-free at rest.
 class NeoHookean : public Material<NeoHookeanLaw> {
 public:
     static constexpr const char* kName = "NeoHookean";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;kappa=20000";
-    static constexpr const char* kDescription = "neo-Hookean mu/2 (I1bar - 3) + kappa/2 (J - 1)^2 (TLED eq. (31)-(32), no fibres)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2, I1bar = J^(-2/3) I1, I1 = tr C, C = F^T F, J = det F (TLED eq. (31)-(32) without fibres); with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), kappa = E/(3 (1 - 2 nu)); ViscoelasticProny parts: isochoric mu/2 (I1bar - 3), volumetric kappa/2 (J - 1)^2";
+    static constexpr const char* kTitle = "neo-Hookean (TLED eq. (31)-(32), no fibres)";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1bar = J^(-2/3) I1, I1 = tr C, C = F^T F, J = det F; with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), kappa = E/(3 (1 - 2 nu))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

@@ -5,7 +5,7 @@ namespace fascia::materials {
 
 /// Orthotropic neo-Hookean (TLED section 3.2.3): two fibre families a0, b0 in the eq. (33)
 /// convention,
-///   W = mu/2 (I1bar - 3) + eta/4 (I4bar - 1)^2 + eta2/4 (I6bar - 1)^2 + kappa/2 (J - 1)^2.
+/// OrthotropicIso plus QuadraticVolume (Laws.h).
 /// `direction` is a0, `direction2` is b0 (both normalised; they must not be parallel and should be
 /// orthogonal, warned otherwise). Stress-free at rest.
 class Orthotropic : public Material<OrthotropicLaw> {
@@ -13,10 +13,10 @@ public:
     static constexpr const char* kName = "Orthotropic";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;kappa=20000;eta=3000;eta2=1500;direction=1 0 0;direction2=0 1 0";
-    static constexpr const char* kDescription = "neo-Hookean plus two fibre families eta/4 (I4bar - 1)^2 + eta2/4 (I6bar - 1)^2";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = mu/2 (I1bar - 3) + eta/4 (I4bar - 1)^2 + eta2/4 (I6bar - 1)^2 + kappa/2 (J - 1)^2, I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, I6bar = J^(-2/3) b0.C b0, C = F^T F, J = det F, a0 = direction, b0 = direction2 (TLED section 3.2.3); ViscoelasticProny parts: isochoric the I1bar, I4bar and I6bar terms, volumetric kappa/2 (J - 1)^2";
+    static constexpr const char* kTitle = "orthotropic neo-Hookean, two fibre families (TLED section 3.2.3)";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, I6bar = J^(-2/3) b0.C b0, C = F^T F, J = det F, a0 = direction, b0 = direction2; with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), kappa = E/(3 (1 - 2 nu))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }

@@ -3,7 +3,7 @@
 
 namespace fascia::materials {
 
-/// Saint Venant-Kirchhoff material (HEML Table 3): W = lambda/2 (tr E)^2 + mu tr(E^2).
+/// Saint Venant-Kirchhoff material (HEML Table 3): StVenantKirchhoffIso, no volumetric part (Laws.h).
 /// Moduli: lambda and mu, or youngModulus and poissonRatio. No volumetric term; softens under
 /// strong compression (HEML section 4.2). Shear modulus mu, bulk modulus lambda + 2 mu / 3.
 class StVenantKirchhoff : public Material<StVenantKirchhoffLaw> {
@@ -11,10 +11,10 @@ public:
     static constexpr const char* kName = "StVenantKirchhoff";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "youngModulus=3000;poissonRatio=0.45";
-    static constexpr const char* kDescription = "Saint Venant-Kirchhoff material, lambda/2 (tr E)^2 + mu tr(E^2) (HEML Table 3)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = lambda/2 (tr E)^2 + mu tr(E^2), E = (C - I)/2 (Green-Lagrange strain), C = F^T F; written as lambda/8 (I1 - 3)^2 + mu/4 (I1^2 - 2 I2 - 2 I1 + 3); no separate volumetric part (all of W is isochoric() for ViscoelasticProny); lambda, mu from youngModulus, poissonRatio as the Lame coefficients (HEML Table 3)";
+    static constexpr const char* kTitle = "Saint Venant-Kirchhoff (HEML Table 3)";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "E = (C - I)/2 (Green-Lagrange strain), C = F^T F; written as lambda/8 (I1 - 3)^2 + mu/4 (I1^2 - 2 I2 - 2 I1 + 3); lambda, mu from youngModulus, poissonRatio as the Lame coefficients";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.lambda + 2.0 / 3.0 * m_law.mu; }

@@ -4,8 +4,8 @@
 namespace fascia::materials {
 
 /// Transversely isotropic neo-Hookean (TLED section 3.2.2, eq. (31)-(33), Appendix A):
-///   W = mu/2 (I1bar - 3) + eta/4 (I4bar - 1)^2 + kappa/2 (J - 1)^2,  I4bar = J^(-2/3) a0.C a0,
-/// in the eq. (33) convention (eq. (31) prints eta/2: see TransverselyIsotropicLaw).
+/// TransverselyIsotropicIso plus QuadraticVolume (Laws.h), in the eq. (33) convention (eq. (31)
+/// prints eta/2: see TransverselyIsotropicIso).
 /// The fibre direction a0 is `direction` (normalised); force fields may override it per element
 /// from a mesh cell array. Stress-free at rest.
 class TransverselyIsotropic : public Material<TransverselyIsotropicLaw> {
@@ -13,10 +13,10 @@ public:
     static constexpr const char* kName = "TransverselyIsotropic";
     /// moderate soft-tissue parameters (Pa) for sweeps and examples: name=value pairs separated by ";"
     static constexpr const char* kExample = "mu=1000;kappa=20000;eta=3000;direction=1 1 0";
-    static constexpr const char* kDescription = "neo-Hookean plus fibres eta/4 (I4bar - 1)^2 (TLED eq. (33) convention)";
-    /// the energy in full, for --describe (a second line of the registry description)
-    static constexpr const char* kEnergy =
-        "W = mu/2 (I1bar - 3) + eta/4 (I4bar - 1)^2 + kappa/2 (J - 1)^2, I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, C = F^T F, J = det F, a0 = direction (TLED eq. (31) with eq. (33)'s factor eta/4, see Laws.h); ViscoelasticProny parts: isochoric the I1bar and I4bar terms, volumetric kappa/2 (J - 1)^2";
+    static constexpr const char* kTitle = "transversely isotropic neo-Hookean, fibres in the TLED eq. (33) convention (TLED section 3.2.2)";
+    /// what --describe prints after W: the invariants, the parameter conversions, the moduli
+    static constexpr const char* kTerms =
+        "I1bar = J^(-2/3) tr C, I4bar = J^(-2/3) a0.C a0, C = F^T F, J = det F, a0 = direction (TLED eq. (31) with eq. (33)'s factor eta/4, see Laws.h); with youngModulus E and poissonRatio nu: mu = E/(2 (1 + nu)), kappa = E/(3 (1 - 2 nu))";
     void init() override;
     double shearModulus() const override { return m_law.mu; }
     double bulkModulus() const override { return m_law.kappa; }
