@@ -1,5 +1,6 @@
 #include "fascia/sim/Simulation.h"
 #include "fascia/base/ErrorList.h"
+#include "fascia/base/Format.h"
 #include "fascia/scene/SceneLoader.h"
 #include "fascia/sim/Tool.h"
 
@@ -14,7 +15,6 @@
 #include <limits>
 #include <set>
 #include <unordered_map>
-#include <sstream>
 
 namespace fascia::core {
 
@@ -61,13 +61,6 @@ namespace {
 void collect(Node& n, std::vector<Component*>& out) {
     for (auto& c : n.components()) out.push_back(c.get());
     for (auto& ch : n.children()) collect(*ch, out);
-}
-
-std::string shortNumber(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
 }
 
 /// A node has one integrator: its states find the first, so a second one would never be called.
@@ -288,7 +281,7 @@ void Simulation::init() {
         if (!limiting)
             m_root->fail(m_root->dt, "dt=\"auto\" but no force field reports a stable time step; give dt in seconds");
         if (!(crit > 0) || !std::isfinite(crit * m_root->dtSafety.get()))
-            limiting->fail("dt=\"auto\" but the stable time step it computes is " + shortNumber(crit) +
+            limiting->fail("dt=\"auto\" but the stable time step it computes is " + formatNumber(crit, 6) +
                                " s, not a positive number: the wave speed of its material is not finite",
                            {"check the moduli (mu, E, bulk modulus) and the density: a modulus near the largest "
                             "double (1e308) overflows, and a zero density has no wave speed",
@@ -387,7 +380,7 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
                      " s of " + limiting->className() + " '" + limiting->path() +
                      "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
     else if (const IntegratorLimit lim = integratorLimit(); warnAboveCritical && lim.integrator && dt > lim.step)
-        lim.integrator->warn(lim.step > 0 ? "dt = " + shortNumber(dt) + " s is above its stable time step " + shortNumber(lim.step) +
+        lim.integrator->warn(lim.step > 0 ? "dt = " + formatNumber(dt, 6) + " s is above its stable time step " + formatNumber(lim.step, 6) +
                                                 " s (with its damping): the integration will likely be unstable (dt=\"auto\" picks a stable one)"
                                           : "no time step is stable: " + lim.why);
     for (Component* c : m_all) c->dtChanged(dt);
@@ -510,7 +503,7 @@ void Simulation::checkEndTime(double T) const {
     // shortened step, so the rule is the same before the first step and after any (a restart included)
     if (m_dt > T * (1 + kTimeTolerance))
         m_root->fail(m_root->dt.isSet() ? static_cast<const BaseParam&>(m_root->dt) : m_root->endTime,
-                     "dt = " + shortNumber(m_dt) + " s is larger than the end time " + shortNumber(T) +
+                     "dt = " + formatNumber(m_dt, 6) + " s is larger than the end time " + formatNumber(T, 6) +
                          " s: not even one step fits",
                      {"make dt smaller than the end time, or the end time (endTime, --time) longer"});
 }

@@ -1,5 +1,6 @@
 #include "DynamicRelaxation.h"
 #include "Integrator.h"
+#include "fascia/base/Format.h"
 #include "fascia/base/Error.h"
 
 #include <algorithm>
@@ -10,14 +11,9 @@
 
 namespace fascia::mechanics {
 
-namespace {
+using core::formatNumber;
 
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(3);
-    os << v;
-    return os.str();
-}
+namespace {
 
 double norm(const Positions& p) {
     double s = 0;
@@ -144,7 +140,7 @@ void DynamicRelaxation::estimateStiffness(core::MechanicalGroup& g, StateData& d
     x = d.start;
     if (!(lambda > 0) || !std::isfinite(lambda))
         core::throwSimulationError("[" + path() + "] step " + std::to_string(g.stepIndex) + ": the state '" +
-                                   s.name() + "' shows no stiffness (estimated largest eigenvalue " + num(lambda) +
+                                   s.name() + "' shows no stiffness (estimated largest eigenvalue " + formatNumber(lambda, 3) +
                                    "): a static solution needs an elastic force field that holds every free node");
     d.lambdaShape = lambda;
     scaleMass(d);
@@ -171,10 +167,10 @@ void DynamicRelaxation::step(core::MechanicalGroup& g, double t, double dt) {
                     name().c_str(), rep.loadStep, rep.time, rep.iterations, rep.residual, rep.rate,
                     rep.converged ? "" : ", not converged");
     if (!rep.converged)
-        warn("load step " + std::to_string(rep.loadStep) + " (t = " + num(T) + " s) did not converge in " +
-             std::to_string(rep.iterations) + " iterations: residual " + num(rep.residual) + " (tolerance " +
-             num(m_tolerance.get()) + "), rate " + num(rep.rate) + ", estimated displacement error " +
-             num(rep.displacementError) + " (tolerance " + num(m_displacementTolerance.get()) +
+        warn("load step " + std::to_string(rep.loadStep) + " (t = " + formatNumber(T, 3) + " s) did not converge in " +
+             std::to_string(rep.iterations) + " iterations: residual " + formatNumber(rep.residual, 3) + " (tolerance " +
+             formatNumber(m_tolerance.get(), 3) + "), rate " + formatNumber(rep.rate, 3) + ", estimated displacement error " +
+             formatNumber(rep.displacementError, 3) + " (tolerance " + formatNumber(m_displacementTolerance.get(), 3) +
              "); raise maxIterations, or check that the constraints hold the body (a free body has no static solution)");
     m_reports.push_back(rep);
 }
@@ -354,7 +350,7 @@ std::string DynamicRelaxation::runSummary() const {
     }
     std::ostringstream os;
     os << "DynamicRelaxation '" << name() << "': " << m_reports.size() << " load steps, " << totalIterations()
-       << " iterations (most: " << most << " at step " << mostStep << "), largest residual " << num(worst) << ", ";
+       << " iterations (most: " << most << " at step " << mostStep << "), largest residual " << formatNumber(worst, 3) << ", ";
     if (failed)
         os << failed << " load step(s) did not converge";
     else
