@@ -2,7 +2,7 @@
 // force fields' element loops (docs/performance.md, Method).
 #include "ReferenceKernel.h"
 
-#include "fascia/materials/Laws.h"
+#include "fascia/materials/Laws.h"  // materials::invCbrt only, inlined (header only: no link to the plugin)
 
 #include <omp.h>
 

@@ -114,7 +114,7 @@ void HEMLForceField::init() {
     // materials
     d.massSpring = m_stiffness.isSet();
     // (the materials per element are kept only until the blocks hold them: 8 bytes an element at the
-    // peak, issue 17)
+    // peak: docs/performance.md, "Peak memory, HEML")
     std::vector<BaseMaterial*> elementMaterial(m_tets.size(), nullptr);
     if (d.massSpring) {
         if (m_material.get() || m_groupMaterials.isSet())
@@ -198,8 +198,9 @@ void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_
     }
 }
 
-/// precision="mixed": the element arrays rounded to float, the double ones freed (issue 17: the
-/// element data the loop streams is halved, 80 -> 48 bytes per element with the node indices).
+/// precision="mixed": the element arrays rounded to float, the double ones freed (docs/design.md,
+/// section 3, "two precisions of the same loop": the element data the loop streams is halved,
+/// 80 -> 48 bytes per element with the node indices).
 void roundToFloat(HEMLData& d) {
     d.elf.zip(d.el, [](FVec& f, const DVec& v) { f.assign(v.begin(), v.end()); });
     d.el = ElementArrays<double>{};
@@ -512,7 +513,8 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
     }
     // the density, else the total mass over the mesh volume (the element layer's one rule)
     const double V = d.totalVolume;
-    // (the altitudes from the rest shape here, once: not kept per element, issue 17's peak memory)
+    // (the altitudes from the rest shape here, once: not kept per element, for the peak memory:
+    // docs/performance.md, "Peak memory, HEML")
     const auto altitude = [&](size_t e) {
         const auto& t = m_tets[e];
         const Vec3 &p0 = m_rest[t[0]], &p1 = m_rest[t[1]], &p2 = m_rest[t[2]], &p3 = m_rest[t[3]];

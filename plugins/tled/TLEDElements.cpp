@@ -260,7 +260,7 @@ size_t compactRows(Impl& im) {
 /// The blocks' force buffers (TLEDForceField::m_nodeBuffers): the node ranges addBlocks recorded,
 /// or compact rows where the ranges would take more than 1.5 times as many rows. A compact row
 /// costs about 1.5 times a range row per step (the copy-in of u, the per-node row lists of the sum;
-/// docs/performance.md, issue 17, session 13).
+/// docs/performance.md, lesson 5).
 void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice) {
     size_t rangeRows = 0;
     for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += im.buffers.rowCount(b);
