@@ -152,6 +152,8 @@ public:
 
 private:
     void precompute(const Positions& rest, const std::vector<materials::BaseMaterial*>& elementMaterial);
+    /// precompute's per-slot data (HEML Algorithm 1) from the rest positions; a degenerate element fails.
+    void fillSlots(const Positions& rest);
     void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
