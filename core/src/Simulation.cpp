@@ -199,6 +199,74 @@ void adoptBackend(const Node& root, const std::vector<Component*>& all, std::vec
     }
 }
 
+/// One group per state that an integrator moves (the first in its context); a state without one
+/// is warned about and left out.
+std::vector<MechanicalGroup> groupsOfStates(const std::vector<Component*>& all) {
+    std::vector<MechanicalGroup> groups;
+    for (Component* c : all) {
+        auto* s = dynamic_cast<BaseMechanicalState*>(c);
+        if (!s) continue;
+        auto* integ = s->node()->findInContext<BaseIntegrator>();
+        if (!integ) {
+            s->warn("no integrator in its context: it will not move (add SemiImplicitEuler to its node or a parent)");
+            continue;
+        }
+        MechanicalGroup g;
+        g.integrator = integ;
+        g.state = s;
+        g.gravity = s->node()->contextGravity();
+        g.gravityCurve = &s->node()->contextGravityCurve();
+        groups.push_back(std::move(g));
+    }
+    return groups;
+}
+
+/// Every force field, mass and constraint into the group of the state in its context (a tool's:
+/// the body it names); one without a group is warned about.
+void assignToGroups(const std::vector<Component*>& all, std::vector<MechanicalGroup>& groups) {
+    for (Component* c : all) {
+        auto* ff = dynamic_cast<BaseForceField*>(c);
+        auto* m = dynamic_cast<BaseMass*>(c);
+        auto* k = dynamic_cast<BaseConstraint*>(c);
+        if (!ff && !m && !k) continue;
+        auto* s = c->node()->findInContext<BaseMechanicalState>();
+        if (auto* tool = dynamic_cast<BaseTool*>(c); tool && tool->body()) s = tool->body();  // a tool names its body
+        auto it = std::find_if(groups.begin(), groups.end(), [&](auto& g) { return g.state == s; });
+        if (it == groups.end()) {
+            c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
+                      : "no MechanicalObject in its context: it will not act");
+            continue;
+        }
+        if (ff) it->forceFields.push_back(ff);
+        if (m) it->masses.push_back(m);
+        if (k) it->constraints.push_back(k);
+    }
+}
+
+/// The group's nodal masses (the sum of its masses) and their inverses (0 for a massless node),
+/// checked against the state's size; a group that needs a mass and has none fails.
+void sumMasses(MechanicalGroup& g) {
+    const size_t n = g.state->size();
+    g.mass.assign(n, 0.0);
+    for (auto* m : g.masses) {
+        const auto& mm = m->nodalMasses();
+        if (mm.size() != n)
+            m->fail("has " + std::to_string(mm.size()) + " nodal masses but its state '" + g.state->name() + "' has " +
+                    std::to_string(n) + " nodes");
+        for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
+    }
+    if (g.masses.empty() && n > 0 && (!g.forceFields.empty() || !g.gravity.isZero()))
+        g.state->fail("no mass in its context: add a LumpedMass next to it");
+    g.invMass.resize(n);
+    size_t massless = 0;
+    for (size_t i = 0; i < n; ++i) {
+        g.invMass[i] = g.mass[i] > 0 ? 1.0 / g.mass[i] : 0.0;
+        massless += g.mass[i] > 0 ? 0 : 1;
+    }
+    if (massless && !g.masses.empty())
+        g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+}
+
 } // namespace
 
 void Simulation::init() {
@@ -215,64 +283,25 @@ void Simulation::init() {
 
     // assemble one group per state: a state belongs to the integrator in its context, and every
     // force field, mass and constraint to the state in its context
-    m_groups.clear();
-    for (Component* c : m_all) {
-        auto* s = dynamic_cast<BaseMechanicalState*>(c);
-        if (!s) continue;
-        auto* integ = s->node()->findInContext<BaseIntegrator>();
-        if (!integ) {
-            s->warn("no integrator in its context: it will not move (add SemiImplicitEuler to its node or a parent)");
-            continue;
-        }
-        MechanicalGroup g;
-        g.integrator = integ;
-        g.state = s;
-        g.gravity = s->node()->contextGravity();
-        g.gravityCurve = &s->node()->contextGravityCurve();
-        m_groups.push_back(std::move(g));
-    }
-    for (Component* c : m_all) {
-        auto* ff = dynamic_cast<BaseForceField*>(c);
-        auto* m = dynamic_cast<BaseMass*>(c);
-        auto* k = dynamic_cast<BaseConstraint*>(c);
-        if (!ff && !m && !k) continue;
-        auto* s = c->node()->findInContext<BaseMechanicalState>();
-        if (auto* tool = dynamic_cast<BaseTool*>(c); tool && tool->body()) s = tool->body();  // a tool names its body
-        auto it = std::find_if(m_groups.begin(), m_groups.end(), [&](auto& g) { return g.state == s; });
-        if (it == m_groups.end()) {
-            c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
-                      : "no MechanicalObject in its context: it will not act");
-            continue;
-        }
-        if (ff) it->forceFields.push_back(ff);
-        if (m) it->masses.push_back(m);
-        if (k) it->constraints.push_back(k);
-    }
+    m_groups = groupsOfStates(m_all);
+    assignToGroups(m_all, m_groups);
     for (auto& g : m_groups) {
-        const size_t n = g.state->size();
-        g.mass.assign(n, 0.0);
-        for (auto* m : g.masses) {
-            const auto& mm = m->nodalMasses();
-            if (mm.size() != n)
-                m->fail("has " + std::to_string(mm.size()) + " nodal masses but its state '" + g.state->name() + "' has " +
-                        std::to_string(n) + " nodes");
-            for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
-        }
-        if (g.masses.empty() && n > 0 && (!g.forceFields.empty() || !g.gravity.isZero()))
-            g.state->fail("no mass in its context: add a LumpedMass next to it");
-        g.invMass.resize(n);
-        size_t massless = 0;
-        for (size_t i = 0; i < n; ++i) {
-            g.invMass[i] = g.mass[i] > 0 ? 1.0 / g.mass[i] : 0.0;
-            massless += g.mass[i] > 0 ? 0 : 1;
-        }
-        if (massless && !g.masses.empty())
-            g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+        sumMasses(g);
         checkConstraintConflicts(g);
     }
     adoptBackend(*m_root, m_all, m_groups);
+    chooseDt();
 
-    // time step
+    for (Component* c : m_all)
+        if (auto* o = dynamic_cast<BaseObserver*>(c)) m_observers.push_back(o);
+    m_initialised = true;
+    SceneContext& ctx = m_root->context();
+    ctx.time = m_time;
+    ctx.step = m_step;
+    ctx.groups = &m_groups;
+}
+
+void Simulation::chooseDt() {
     const TimeStep& ts = m_root->dt.get();
     if (m_dtOverride > 0) {
         m_dt = m_dtOverride;
@@ -294,14 +323,6 @@ void Simulation::init() {
         m_dt = ts.value;
     }
     if (m_dt > 0) setDt(m_dt);
-
-    for (Component* c : m_all)
-        if (auto* o = dynamic_cast<BaseObserver*>(c)) m_observers.push_back(o);
-    m_initialised = true;
-    SceneContext& ctx = m_root->context();
-    ctx.time = m_time;
-    ctx.step = m_step;
-    ctx.groups = &m_groups;
 }
 
 void Simulation::start() {
