@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 17's contention rounds (docs/performance.md, "Issue 17: a step team of our own"): per round,
+# The contention rounds (docs/performance.md, "Issue 17: a step team of our own"): per round,
 # 2 threads and 1 thread of a new and an old build, alternating, under a competing busy process:
 # TLED neo-Hookean at 20,250 and 196,608 tetrahedra (fascia-bench --contend) and the abdomen scene
 # (fascia-run, a busy loop pinned to core 1). Prints ns per element-step and ms per step.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The prepared GPU check (issue 15): on a machine with an NVIDIA GPU, the CUDA toolkit, CMake, ninja
+# The prepared GPU check (docs/performance.md, "The step on a GPU"): on a machine with an NVIDIA GPU, the CUDA toolkit, CMake, ninja
 # and a C++ compiler, but no other dependency and no network, it
 #   1. unpacks the dependency bundle made by tools/make-gpu-deps.sh (Eigen, TinyXML2, Catch2);
 #   2. configures a build without VTK (FASCIA_WITH_VTK=OFF, FASCIA_WITH_CUDA=ON) that takes those

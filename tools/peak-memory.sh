@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Peak memory per element of a GridMesh scene (issue 17: at most 250 B per element for HEML and 300 B
-# for TLED at 2M tetrahedra): fascia-bench --scene writes the case's scene (the one it times), and
+# Peak memory per element of a GridMesh scene (the targets: at most 250 B per element for HEML and
+# 300 B for TLED at 2M tetrahedra; docs/performance.md, "Peak memory, HEML"): fascia-bench --scene writes the case's scene (the one it times), and
 # fascia-run runs a few steps of it under /usr/bin/time -v, whose "Maximum resident set size" is the
 # peak. A one-cell cube run the same way gives the baseline (libraries, plugins, the process itself).
 # Usage: tools/peak-memory.sh [BUILD_DIR] [HEML|TLED] [CUBE] [STEPS] [extra fascia-bench case options]

@@ -1,5 +1,6 @@
-// fascia-bench --suite contact: what a rigid tool's contact adds to a step (issue 14: a capsule on
-// the 21k-tetrahedron abdomen-size mesh adds 10 % or less), side by side in one run.
+// fascia-bench --suite contact: what a rigid tool's contact adds to a step (the target: a capsule on
+// the 21k-tetrahedron abdomen-size mesh adds 10 % or less; docs/performance.md, "Contact"), side by side
+// in one run.
 #include "Bench.h"
 #include "fascia/sim/Tool.h"
 
@@ -37,7 +38,7 @@ std::string capsuleXml(const fascia::Vec3& top, double dt) {
 /// The capsule of capsuleXml as a closed triangle surface (OBJ) in the same frame: tip centre at
 /// the origin, the shaft along +x. Rings around x: a pole and `cap` rings on each hemisphere,
 /// `shaft` - 1 rings between the equators, `around` points a ring: 2 around (2 cap + shaft - 1 + 1)
-/// triangles (9,984 with the defaults, the issue's 10k-triangle surface tool), wound outward.
+/// triangles (9,984 with the defaults: the 10k-triangle surface tool of docs/performance.md, "Contact"), wound outward.
 void writeCapsuleObj(const std::string& path, int around = 48, int cap = 12, int shaft = 81) {
     const double pi = 3.14159265358979323846;
     std::vector<std::pair<double, double>> rings;  // (x, radius) from the tip's pole to the back's
@@ -106,7 +107,7 @@ void runContactSuite(const Case& base) {
                         ff, before, base.steps, contactNodes(sim->state("state")), sim->tool("probe").force()[2]);
         }
         // the same capsule as a 10k-triangle surface tool (its signed distance grid at the default
-        // resolution, the exact closest triangle near the surface): the issue's 25 % budget
+        // resolution, the exact closest triangle near the surface): a budget of 25 % (docs/performance.md, "Contact")
         const std::string obj =
             (std::filesystem::temp_directory_path() / ("fascia-bench-capsule-" + std::to_string(getpid()) + ".obj")).string();
         writeCapsuleObj(obj);

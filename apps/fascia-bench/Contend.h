@@ -1,6 +1,6 @@
 #pragma once
 /// fascia-bench --contend: a competing busy process during the timing, so that one core is held by
-/// a neighbour as a surgical simulator's render and haptic threads hold one (issue 17). A forked
+/// a neighbour as a surgical simulator's render and haptic threads hold one (docs/performance.md, "Method", --contend). A forked
 /// child spins, pinned to the last core this process may run on (where sched_setaffinity allows),
 /// and dies with the bench whatever happens: stop() and the destructor kill and reap it, SIGINT,
 /// SIGTERM and SIGHUP kill it before the bench dies of them, and the kernel kills it when the bench

@@ -1,5 +1,5 @@
 #pragma once
-/// The yardstick of issue 17's targets: a TLED step for neo-Hookean linear tetrahedra written
+/// The yardstick of the step's targets (docs/performance.md, "Method", the reference kernel): a TLED step for neo-Hookean linear tetrahedra written
 /// plainly, in double, on a fixed number of threads, outside the framework (ReferenceKernel.cpp).
 /// Per element e (rest volume V0, shape-function derivatives dN_a/dX precomputed), per step:
 ///   F = I + sum_a u_a (x) dN_a/dX, u = x - X             TLED eq. (1)-(3), TLEDForceField.h

@@ -62,7 +62,7 @@ usage:
   --determinism   also run with 1 thread and report whether positions are bitwise identical
   --reference     time the reference kernel first on the same mesh, with the same threads: a plain
                   TLED neo-Hookean step in double (apps/fascia-bench/ReferenceKernel.h), the
-                  yardstick of issue 17; the ratios *_vs_first are then to it
+                  yardstick of docs/performance.md's targets; the ratios *_vs_first are then to it
   --contend       during the timing, a competing busy process spins on one core (the last one
                   this process may use, pinned where allowed), as a render or haptic thread would;
                   it is killed after the timing and the --determinism runs (and with the bench,
@@ -73,17 +73,16 @@ usage:
                   2M-tetrahedron cube, 1 and 2 threads), tled (TLED neo-Hookean, transversely
                   isotropic and one Prony term on 20k and 200k tetrahedra, hexahedra against
                   tetrahedra; TLED beside HEML on the 21k organ mesh), scaling (HEML and TLED from
-                  20k to 200k tetrahedra), large (issue 17's table: per size, the reference
-                  kernel on 2 threads, then TLED and HEML in double and mixed on 2 threads, in
-                  double on 1, each
-                  line quiet and then with --contend's competitor; 20k, 197k, 750k and 2.06M
+                  20k to 200k tetrahedra), large (the table of docs/performance.md's "Method":
+                  per size, the reference kernel on 2 threads, then TLED and HEML in double and
+                  mixed on 2 threads, in double on 1, each line quiet and then with --contend's competitor; 20k, 197k, 750k and 2.06M
                   tetrahedra; the 2M line holds seven copies of the mesh: several GB), contact
                   (HEML and TLED on the 21k organ mesh without a tool, with a capsule pressed into
                   it and moving every step, and with the same capsule as a 10k-triangle
                   SurfaceTool), buffers (TLED's two layouts of the block
                   buffers, range and compact, in double and mixed on 2 threads, on the large
-                  suite's cubes), gpu (issue 15's figures on a CUDA GPU: the 21k organ mesh on
-                  the CPU (TLED, 2 threads) first, then on the GPU, TLED and HEML, in float and
+                  suite's cubes), gpu (docs/performance.md, "The step on a GPU": the 21k organ
+                  mesh on the CPU (TLED, 2 threads) first, then on the GPU, TLED and HEML, in float and
                   double; at 2M tetrahedra, per precision, TLED neo-Hookean first, then
                   transversely isotropic, one Prony term, hexahedra and HEML neo-Hookean;
                   TLED neo-Hookean tetrahedra in float and double at the sizes of --cubes,
@@ -225,8 +224,8 @@ void suiteScaling(const Case& c, const SuiteOptions& o) {
     }
 }
 
-/// Issue 17's table: per size, the reference kernel (2 threads) first, then TLED and HEML in
-/// double on 2 threads and on 1, each line quiet and then beside a competing process (with
+/// The large-mesh table (docs/performance.md, "Method", --suite large): per size, the reference
+/// kernel (2 threads) first, then TLED and HEML in double on 2 threads and on 1, each line quiet and then beside a competing process (with
 /// --contend: only beside it).
 void suiteLarge(const Case& c, const SuiteOptions& o) {
     const std::vector<int> all = {15, 32, 50, 70};  // 20,250, 196,608, 750,000 and 2,058,000 tetrahedra
@@ -299,7 +298,7 @@ void suiteHeml(const Case& c, const SuiteOptions& o) {
             }
 }
 
-/// Issue 15's figures on a CUDA GPU (docs/performance.md), the quick ones first: the 21k organ mesh
+/// The figures of docs/performance.md, "The step on a GPU", the quick ones first: the 21k organ mesh
 /// on the CPU (TLED, 2 threads) and then on the GPU, TLED and HEML, in float and double; at 2M
 /// tetrahedra, per precision, TLED neo-Hookean first, then transversely isotropic, one Prony term,
 /// hexahedra and HEML neo-Hookean (ratios from the same rounds); then TLED neo-Hookean tetrahedra at

@@ -1,4 +1,5 @@
 #include "fascia/sim/LoadCurve.h"
+#include "fascia/base/Format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +9,6 @@
 namespace fascia::core {
 
 namespace {
-
-std::string number(double v) {
-    std::ostringstream os;
-    os.precision(12);
-    os << v;
-    return os.str();
-}
 
 /// s(r) = r^3 (10 - 15 r + 6 r^2) and its derivative 30 r^2 (1 - r)^2.
 double smooth(double r) { return r * r * r * (10 - 15 * r + 6 * r * r); }
@@ -33,8 +27,8 @@ std::string Curve::make(const std::vector<double>& points, Interpolation interp,
     c.m_c.clear();
     for (size_t k = 0; k < points.size(); k += 2) {
         if (k && points[k] < points[k - 2])
-            return "times must not decrease: point " + std::to_string(k / 2 + 1) + " is at t = " + number(points[k]) +
-                   " s, after t = " + number(points[k - 2]) + " s";
+            return "times must not decrease: point " + std::to_string(k / 2 + 1) + " is at t = " + formatNumber(points[k], 12) +
+                   " s, after t = " + formatNumber(points[k - 2], 12) + " s";
         c.m_t.push_back(points[k]);
         c.m_c.push_back(points[k + 1]);
     }
@@ -75,7 +69,7 @@ std::string Curve::parse(const std::string& text, Curve& out) {
     };
     if (kind == "ramp" || kind == "smoothStep") {
         if (auto e = one("the duration T in seconds"); !e.empty()) return e;
-        if (!(nums[0] > 0)) return "\"" + kind + "\" needs a duration T > 0, not " + number(nums[0]);
+        if (!(nums[0] > 0)) return "\"" + kind + "\" needs a duration T > 0, not " + formatNumber(nums[0], 12);
         return make({0.0, 0.0, nums[0], 1.0}, kind == "ramp" ? Interpolation::Linear : Interpolation::Smooth, after, out);
     }
     if (kind == "step") {
@@ -118,7 +112,7 @@ double Curve::rate(double t) const {
 
 std::string Curve::text() const {
     std::string s = m_interp == Interpolation::Linear ? "linear" : "smooth";
-    for (size_t k = 0; k < m_t.size(); ++k) s += " " + number(m_t[k]) + " " + number(m_c[k]);
+    for (size_t k = 0; k < m_t.size(); ++k) s += " " + formatNumber(m_t[k], 12) + " " + formatNumber(m_c[k], 12);
     if (m_after == After::Extend) s += " extend";
     return s;
 }

@@ -1,21 +1,14 @@
 #include "fascia/base/Component.h"
+#include "fascia/base/Format.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 
 namespace fascia::core {
 
 namespace {
-
-std::string fmtNumber(double v) {
-    std::ostringstream os;
-    os.precision(12);
-    os << v;
-    return os.str();
-}
 
 /// Splits on whitespace and commas.
 std::vector<std::string> tokens(const std::string& text) {
@@ -57,7 +50,7 @@ std::string checkEach(const Seq& values, const ParamSpec& spec) {
     size_t i = 0;
     for (double v : values) {
         auto p = checkNumber(v, spec);
-        if (!p.empty()) return "entry " + std::to_string(i) + " (" + fmtNumber(v) + ") " + p;
+        if (!p.empty()) return "entry " + std::to_string(i) + " (" + formatNumber(v, 12) + ") " + p;
         ++i;
     }
     return {};
@@ -97,9 +90,9 @@ std::string ParamSpec::rangeText() const {
         return s;
     }
     if (lo && hi)
-        return std::string(loExclusive ? "(" : "[") + fmtNumber(*lo) + ", " + fmtNumber(*hi) + (hiExclusive ? ")" : "]");
-    if (lo) return std::string(loExclusive ? "> " : ">= ") + fmtNumber(*lo);
-    if (hi) return std::string(hiExclusive ? "< " : "<= ") + fmtNumber(*hi);
+        return std::string(loExclusive ? "(" : "[") + formatNumber(*lo, 12) + ", " + formatNumber(*hi, 12) + (hiExclusive ? ")" : "]");
+    if (lo) return std::string(loExclusive ? "> " : ">= ") + formatNumber(*lo, 12);
+    if (hi) return std::string(hiExclusive ? "< " : "<= ") + formatNumber(*hi, 12);
     return {};
 }
 
@@ -130,7 +123,7 @@ bool ParamTraits<double>::parse(const std::string& t, double& v, std::string& e)
     auto tk = tokens(t);
     return tk.size() == 1 && parseDouble(tk[0], v) && std::isfinite(v);
 }
-std::string ParamTraits<double>::format(const double& v) { return fmtNumber(v); }
+std::string ParamTraits<double>::format(const double& v) { return formatNumber(v, 12); }
 std::string ParamTraits<double>::check(const double& v, const ParamSpec& s) { return checkNumber(v, s); }
 
 const char* ParamTraits<std::string>::typeName() { return "string"; }
@@ -153,7 +146,7 @@ bool ParamTraits<Vec3>::parse(const std::string& t, Vec3& v, std::string& e) {
     return true;
 }
 std::string ParamTraits<Vec3>::format(const Vec3& v) {
-    return fmtNumber(v[0]) + " " + fmtNumber(v[1]) + " " + fmtNumber(v[2]);
+    return formatNumber(v[0], 12) + " " + formatNumber(v[1], 12) + " " + formatNumber(v[2], 12);
 }
 std::string ParamTraits<Vec3>::check(const Vec3& v, const ParamSpec& s) {
     return checkEach(std::vector<double>{v[0], v[1], v[2]}, s);
@@ -193,7 +186,7 @@ bool ParamTraits<NumberList>::parse(const std::string& t, NumberList& v, std::st
 }
 std::string ParamTraits<NumberList>::format(const NumberList& v) {
     std::string s;
-    for (double d : v) s += (s.empty() ? "" : " ") + fmtNumber(d);
+    for (double d : v) s += (s.empty() ? "" : " ") + formatNumber(d, 12);
     return s;
 }
 std::string ParamTraits<NumberList>::check(const NumberList& v, const ParamSpec& s) {
@@ -222,7 +215,7 @@ bool ParamTraits<TimeStep>::parse(const std::string& t, TimeStep& v, std::string
     return parseDouble(tk[0], v.value) && std::isfinite(v.value) && v.value > 0;
 }
 std::string ParamTraits<TimeStep>::format(const TimeStep& v) {
-    return v.automatic ? "auto" : (v.value > 0 ? fmtNumber(v.value) : "");
+    return v.automatic ? "auto" : (v.value > 0 ? formatNumber(v.value, 12) : "");
 }
 std::string ParamTraits<TimeStep>::check(const TimeStep&, const ParamSpec&) { return {}; }
 

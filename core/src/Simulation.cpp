@@ -1,5 +1,6 @@
 #include "fascia/sim/Simulation.h"
 #include "fascia/base/ErrorList.h"
+#include "fascia/base/Format.h"
 #include "fascia/scene/SceneLoader.h"
 #include "fascia/sim/Tool.h"
 
@@ -14,7 +15,6 @@
 #include <limits>
 #include <set>
 #include <unordered_map>
-#include <sstream>
 
 namespace fascia::core {
 
@@ -61,13 +61,6 @@ namespace {
 void collect(Node& n, std::vector<Component*>& out) {
     for (auto& c : n.components()) out.push_back(c.get());
     for (auto& ch : n.children()) collect(*ch, out);
-}
-
-std::string shortNumber(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
 }
 
 /// A node has one integrator: its states find the first, so a second one would never be called.
@@ -206,6 +199,74 @@ void adoptBackend(const Node& root, const std::vector<Component*>& all, std::vec
     }
 }
 
+/// One group per state that an integrator moves (the first in its context); a state without one
+/// is warned about and left out.
+std::vector<MechanicalGroup> groupsOfStates(const std::vector<Component*>& all) {
+    std::vector<MechanicalGroup> groups;
+    for (Component* c : all) {
+        auto* s = dynamic_cast<BaseMechanicalState*>(c);
+        if (!s) continue;
+        auto* integ = s->node()->findInContext<BaseIntegrator>();
+        if (!integ) {
+            s->warn("no integrator in its context: it will not move (add SemiImplicitEuler to its node or a parent)");
+            continue;
+        }
+        MechanicalGroup g;
+        g.integrator = integ;
+        g.state = s;
+        g.gravity = s->node()->contextGravity();
+        g.gravityCurve = &s->node()->contextGravityCurve();
+        groups.push_back(std::move(g));
+    }
+    return groups;
+}
+
+/// Every force field, mass and constraint into the group of the state in its context (a tool's:
+/// the body it names); one without a group is warned about.
+void assignToGroups(const std::vector<Component*>& all, std::vector<MechanicalGroup>& groups) {
+    for (Component* c : all) {
+        auto* ff = dynamic_cast<BaseForceField*>(c);
+        auto* m = dynamic_cast<BaseMass*>(c);
+        auto* k = dynamic_cast<BaseConstraint*>(c);
+        if (!ff && !m && !k) continue;
+        auto* s = c->node()->findInContext<BaseMechanicalState>();
+        if (auto* tool = dynamic_cast<BaseTool*>(c); tool && tool->body()) s = tool->body();  // a tool names its body
+        auto it = std::find_if(groups.begin(), groups.end(), [&](auto& g) { return g.state == s; });
+        if (it == groups.end()) {
+            c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
+                      : "no MechanicalObject in its context: it will not act");
+            continue;
+        }
+        if (ff) it->forceFields.push_back(ff);
+        if (m) it->masses.push_back(m);
+        if (k) it->constraints.push_back(k);
+    }
+}
+
+/// The group's nodal masses (the sum of its masses) and their inverses (0 for a massless node),
+/// checked against the state's size; a group that needs a mass and has none fails.
+void sumMasses(MechanicalGroup& g) {
+    const size_t n = g.state->size();
+    g.mass.assign(n, 0.0);
+    for (auto* m : g.masses) {
+        const auto& mm = m->nodalMasses();
+        if (mm.size() != n)
+            m->fail("has " + std::to_string(mm.size()) + " nodal masses but its state '" + g.state->name() + "' has " +
+                    std::to_string(n) + " nodes");
+        for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
+    }
+    if (g.masses.empty() && n > 0 && (!g.forceFields.empty() || !g.gravity.isZero()))
+        g.state->fail("no mass in its context: add a LumpedMass next to it");
+    g.invMass.resize(n);
+    size_t massless = 0;
+    for (size_t i = 0; i < n; ++i) {
+        g.invMass[i] = g.mass[i] > 0 ? 1.0 / g.mass[i] : 0.0;
+        massless += g.mass[i] > 0 ? 0 : 1;
+    }
+    if (massless && !g.masses.empty())
+        g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+}
+
 } // namespace
 
 void Simulation::init() {
@@ -222,64 +283,25 @@ void Simulation::init() {
 
     // assemble one group per state: a state belongs to the integrator in its context, and every
     // force field, mass and constraint to the state in its context
-    m_groups.clear();
-    for (Component* c : m_all) {
-        auto* s = dynamic_cast<BaseMechanicalState*>(c);
-        if (!s) continue;
-        auto* integ = s->node()->findInContext<BaseIntegrator>();
-        if (!integ) {
-            s->warn("no integrator in its context: it will not move (add SemiImplicitEuler to its node or a parent)");
-            continue;
-        }
-        MechanicalGroup g;
-        g.integrator = integ;
-        g.state = s;
-        g.gravity = s->node()->contextGravity();
-        g.gravityCurve = &s->node()->contextGravityCurve();
-        m_groups.push_back(std::move(g));
-    }
-    for (Component* c : m_all) {
-        auto* ff = dynamic_cast<BaseForceField*>(c);
-        auto* m = dynamic_cast<BaseMass*>(c);
-        auto* k = dynamic_cast<BaseConstraint*>(c);
-        if (!ff && !m && !k) continue;
-        auto* s = c->node()->findInContext<BaseMechanicalState>();
-        if (auto* tool = dynamic_cast<BaseTool*>(c); tool && tool->body()) s = tool->body();  // a tool names its body
-        auto it = std::find_if(m_groups.begin(), m_groups.end(), [&](auto& g) { return g.state == s; });
-        if (it == m_groups.end()) {
-            c->warn(s ? "its state '" + s->name() + "' has no integrator: it will not act"
-                      : "no MechanicalObject in its context: it will not act");
-            continue;
-        }
-        if (ff) it->forceFields.push_back(ff);
-        if (m) it->masses.push_back(m);
-        if (k) it->constraints.push_back(k);
-    }
+    m_groups = groupsOfStates(m_all);
+    assignToGroups(m_all, m_groups);
     for (auto& g : m_groups) {
-        const size_t n = g.state->size();
-        g.mass.assign(n, 0.0);
-        for (auto* m : g.masses) {
-            const auto& mm = m->nodalMasses();
-            if (mm.size() != n)
-                m->fail("has " + std::to_string(mm.size()) + " nodal masses but its state '" + g.state->name() + "' has " +
-                        std::to_string(n) + " nodes");
-            for (size_t i = 0; i < n; ++i) g.mass[i] += mm[i];
-        }
-        if (g.masses.empty() && n > 0 && (!g.forceFields.empty() || !g.gravity.isZero()))
-            g.state->fail("no mass in its context: add a LumpedMass next to it");
-        g.invMass.resize(n);
-        size_t massless = 0;
-        for (size_t i = 0; i < n; ++i) {
-            g.invMass[i] = g.mass[i] > 0 ? 1.0 / g.mass[i] : 0.0;
-            massless += g.mass[i] > 0 ? 0 : 1;
-        }
-        if (massless && !g.masses.empty())
-            g.state->warn(std::to_string(massless) + " node(s) have no mass (no element uses them): they will stay where they are");
+        sumMasses(g);
         checkConstraintConflicts(g);
     }
     adoptBackend(*m_root, m_all, m_groups);
+    chooseDt();
 
-    // time step
+    for (Component* c : m_all)
+        if (auto* o = dynamic_cast<BaseObserver*>(c)) m_observers.push_back(o);
+    m_initialised = true;
+    SceneContext& ctx = m_root->context();
+    ctx.time = m_time;
+    ctx.step = m_step;
+    ctx.groups = &m_groups;
+}
+
+void Simulation::chooseDt() {
     const TimeStep& ts = m_root->dt.get();
     if (m_dtOverride > 0) {
         m_dt = m_dtOverride;
@@ -288,7 +310,7 @@ void Simulation::init() {
         if (!limiting)
             m_root->fail(m_root->dt, "dt=\"auto\" but no force field reports a stable time step; give dt in seconds");
         if (!(crit > 0) || !std::isfinite(crit * m_root->dtSafety.get()))
-            limiting->fail("dt=\"auto\" but the stable time step it computes is " + shortNumber(crit) +
+            limiting->fail("dt=\"auto\" but the stable time step it computes is " + formatNumber(crit, 6) +
                                " s, not a positive number: the wave speed of its material is not finite",
                            {"check the moduli (mu, E, bulk modulus) and the density: a modulus near the largest "
                             "double (1e308) overflows, and a zero density has no wave speed",
@@ -301,14 +323,6 @@ void Simulation::init() {
         m_dt = ts.value;
     }
     if (m_dt > 0) setDt(m_dt);
-
-    for (Component* c : m_all)
-        if (auto* o = dynamic_cast<BaseObserver*>(c)) m_observers.push_back(o);
-    m_initialised = true;
-    SceneContext& ctx = m_root->context();
-    ctx.time = m_time;
-    ctx.step = m_step;
-    ctx.groups = &m_groups;
 }
 
 void Simulation::start() {
@@ -387,7 +401,7 @@ void Simulation::applyDt(double dt, bool warnAboveCritical) {
                      " s of " + limiting->className() + " '" + limiting->path() +
                      "': the explicit integration will likely be unstable (dt=\"auto\" picks a stable one)");
     else if (const IntegratorLimit lim = integratorLimit(); warnAboveCritical && lim.integrator && dt > lim.step)
-        lim.integrator->warn(lim.step > 0 ? "dt = " + shortNumber(dt) + " s is above its stable time step " + shortNumber(lim.step) +
+        lim.integrator->warn(lim.step > 0 ? "dt = " + formatNumber(dt, 6) + " s is above its stable time step " + formatNumber(lim.step, 6) +
                                                 " s (with its damping): the integration will likely be unstable (dt=\"auto\" picks a stable one)"
                                           : "no time step is stable: " + lim.why);
     for (Component* c : m_all) c->dtChanged(dt);
@@ -510,7 +524,7 @@ void Simulation::checkEndTime(double T) const {
     // shortened step, so the rule is the same before the first step and after any (a restart included)
     if (m_dt > T * (1 + kTimeTolerance))
         m_root->fail(m_root->dt.isSet() ? static_cast<const BaseParam&>(m_root->dt) : m_root->endTime,
-                     "dt = " + shortNumber(m_dt) + " s is larger than the end time " + shortNumber(T) +
+                     "dt = " + formatNumber(m_dt, 6) + " s is larger than the end time " + formatNumber(T, 6) +
                          " s: not even one step fits",
                      {"make dt smaller than the end time, or the end time (endTime, --time) longer"});
 }

@@ -11,6 +11,7 @@
 //                scene order (StateWriter records: name, type, count, values)
 //   32+L..+8     uint64 hashBytes of bytes [0, 32 + L): the checksum
 #include "fascia/base/Error.h"
+#include "fascia/base/Format.h"
 #include "fascia/base/StateIO.h"
 #include "fascia/sim/Simulation.h"
 
@@ -37,13 +38,6 @@ std::string hex(std::uint64_t h) {
     char b[17];
     std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
     return b;
-}
-
-std::string number(double v) {
-    std::ostringstream os;
-    os.precision(4);
-    os << v;
-    return os.str();
 }
 
 /// The canonical text of one node or component (Simulation::sceneHash).
@@ -163,7 +157,7 @@ void Simulation::readState(StateReader& r, bool observers) {
     }
     r.endSection();
     if (!(m_dt > 0) || !std::isfinite(m_time) || m_step < 0)
-        r.fail("[/] the saved time step " + number(m_dt) + " s, time " + number(m_time) + " s or step " +
+        r.fail("[/] the saved time step " + formatNumber(m_dt, 4) + " s, time " + formatNumber(m_time, 4) + " s or step " +
                std::to_string(m_step) + " is not valid");
     // every component hears the saved dt before it reads its records (coefficients such as Prony's)
     m_root->context().dt = m_dt;

@@ -34,7 +34,7 @@ std::atomic<bool> g_owned{ownedDefault()};
 
 /// A worker's time on its core since it last lost it: it gives the core up (sched_yield) at a task
 /// boundary after kRun of CPU time in one stretch, before the scheduler preempts it in the middle
-/// of a task that the caller would then wait for (issue 17: a competing process on its core).
+/// of a task that the caller would then wait for (docs/design.md, section 1, "the threaded step": a competing process on its core).
 class RunClock {
 public:
     void beforeTask() {

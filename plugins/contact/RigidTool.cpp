@@ -1,22 +1,18 @@
 #include "RigidTool.h"
 #include "BoundaryNodes.h"
+#include "fascia/base/Format.h"
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <sstream>
 
 namespace fascia::contact {
 
+using core::formatNumber;
+
 namespace {
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
-}
 /// Contact tolerance: a node within this fraction of the body's size from the tool touches it. Above
 /// the static solver's probing perturbation (DynamicRelaxation moves nodes by up to 1e-7 of the
 /// body's size to estimate the stiffness), so that probing does not switch a pressed node's contact
@@ -52,7 +48,7 @@ void RigidTool::initContact() {
     m_muS = m_staticFriction.get();
     m_muK = m_kineticFriction.isSet() ? m_kineticFriction.get() : m_muS;
     if (m_muK > m_muS)
-        fail(m_kineticFriction, "kineticFriction = " + num(m_muK) + " is above staticFriction = " + num(m_muS) +
+        fail(m_kineticFriction, "kineticFriction = " + formatNumber(m_muK, 6) + " is above staticFriction = " + formatNumber(m_muS, 6) +
                                     ": a sliding contact cannot hold more than a sticking one",
              {"give kineticFriction <= staticFriction"});
     // the surface nodes: the boundary of the body's mesh, else every node
@@ -111,7 +107,7 @@ void RigidTool::restoreState(core::StateReader& in) {
     m_active.clear();
     for (double a : active) {
         if (!(a >= 0 && a < double(m_contact.size()) && a == std::floor(a)))
-            in.fail("[" + path() + "] record 'active' holds " + num(a) + ", not a node of the body");
+            in.fail("[" + path() + "] record 'active' holds " + formatNumber(a, 6) + ", not a node of the body");
         m_active.push_back(int(a));
     }
     m_slip.assign(slip.begin(), slip.end());

@@ -1,18 +1,13 @@
 #include "SurfaceTool.h"
+#include "fascia/base/Format.h"
 #include "fascia/surface/TriangleSurface.h"
 
 #include <filesystem>
-#include <sstream>
 
 namespace fascia::contact {
 
 namespace {
-std::string mib(double bytes) {
-    std::ostringstream s;
-    s.precision(4);
-    s << bytes / (1024.0 * 1024.0) << " MiB";
-    return s.str();
-}
+std::string mib(double bytes) { return core::formatNumber(bytes / (1024.0 * 1024.0), 4) + " MiB"; }
 } // namespace
 
 SurfaceTool::SurfaceTool() = default;

@@ -1,18 +1,11 @@
 #include "ToolMotion.h"
+#include "fascia/base/Format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace fascia::contact {
 
-namespace {
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
-}
-} // namespace
+using core::formatNumber;
 
 ToolMotion::ToolMotion(core::Component* owner)
     : position(owner, core::ParamSpec("position").unit("m").help("the tool's reference point in the world frame (fixed pose, or the start of a positionCurve motion)"), Vec3::Zero()),
@@ -26,8 +19,8 @@ ToolMotion::ToolMotion(core::Component* owner)
 Eigen::Quaterniond readQuaternion(const core::Component& owner, const core::BaseParam& p, const double* q) {
     const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (!(n > 0) || !std::isfinite(n))
-        owner.fail(p, "the quaternion " + num(q[0]) + " " + num(q[1]) + " " + num(q[2]) + " " + num(q[3]) +
-                          " has no direction (norm " + num(n) + ")",
+        owner.fail(p, "the quaternion " + formatNumber(q[0], 6) + " " + formatNumber(q[1], 6) + " " + formatNumber(q[2], 6) + " " +
+                          formatNumber(q[3], 6) + " has no direction (norm " + formatNumber(n, 6) + ")",
                    {"give w x y z with a non-zero norm, e.g. \"1 0 0 0\" for no rotation"});
     return Eigen::Quaterniond(q[0] / n, q[1] / n, q[2] / n, q[3] / n);
 }
@@ -45,8 +38,8 @@ void ToolMotion::init(const core::Component& owner) {
     if (kt.empty()) owner.fail(keyTimes, "keyframes need keyTimes (one time per key)");
     for (size_t k = 1; k < kt.size(); ++k)
         if (!(kt[k] > kt[k - 1]))
-            owner.fail(keyTimes, "keyframe times must increase: key " + std::to_string(k) + " (t = " + num(kt[k]) +
-                                     " s) does not come after key " + std::to_string(k - 1) + " (t = " + num(kt[k - 1]) + " s)",
+            owner.fail(keyTimes, "keyframe times must increase: key " + std::to_string(k) + " (t = " + formatNumber(kt[k], 6) +
+                                     " s) does not come after key " + std::to_string(k - 1) + " (t = " + formatNumber(kt[k - 1], 6) + " s)",
                        {"list the keys in time order, each at its own time"});
     if (kp.size() != 3 * kt.size())
         owner.fail(keyPositions, "has " + std::to_string(kp.size()) + " numbers for " + std::to_string(kt.size()) +

@@ -1,20 +1,14 @@
 #include "fascia/elements/FibreField.h"
+#include "fascia/base/Format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace fascia::elements {
 
 using materials::BaseMaterial;
+using core::formatNumber;
 
 namespace {
-
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
-}
 
 /// The cell array a fibre parameter names, checked against the cell count.
 const std::vector<double>* cellArray(const core::Component& owner, const core::Param<std::string>& p, const MeshData* mesh,
@@ -71,7 +65,8 @@ FibreField resolveFibres(const core::Component& owner, int which, const core::Pa
         const double len = d.norm();
         if (!(len > 1e-12) || !std::isfinite(len)) {
             const std::string cell = c < tetrahedra ? "tetrahedron " + std::to_string(c) : "hexahedron " + std::to_string(c - tetrahedra);
-            owner.fail(array, std::string(what) + " direction of " + cell + " has length " + fmt(len) + ": directions must be non-zero");
+            owner.fail(array, std::string(what) + " direction of " + cell + " has length " + formatNumber(len, 6) +
+                                  ": directions must be non-zero");
         }
         out.dir[c] = d / len;
     }

@@ -114,7 +114,7 @@ void HEMLForceField::init() {
     // materials
     d.massSpring = m_stiffness.isSet();
     // (the materials per element are kept only until the blocks hold them: 8 bytes an element at the
-    // peak, issue 17)
+    // peak: docs/performance.md, "Peak memory, HEML")
     std::vector<BaseMaterial*> elementMaterial(m_tets.size(), nullptr);
     if (d.massSpring) {
         if (m_material.get() || m_groupMaterials.isSet())
@@ -198,28 +198,18 @@ void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_
     }
 }
 
-/// precision="mixed": the element arrays rounded to float, the double ones freed (issue 17: the
-/// element data the loop streams is halved, 80 -> 48 bytes per element with the node indices).
+/// precision="mixed": the element arrays rounded to float, the double ones freed (docs/design.md,
+/// section 3, "two precisions of the same loop": the element data the loop streams is halved,
+/// 80 -> 48 bytes per element with the node indices).
 void roundToFloat(HEMLData& d) {
     d.elf.zip(d.el, [](FVec& f, const DVec& v) { f.assign(v.begin(), v.end()); });
     d.el = ElementArrays<double>{};
 }
 
-} // namespace
-
-void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMaterial*>& elementMaterial) {
-    HEMLData& d = *m_data;
-    const size_t n = rest.size(), ne = m_tets.size();
-    d.nNodes = n;
-    d.nElements = ne;
-
-    // node order
-    // reverse Cuthill-McKee (docs/performance.md, lesson 5): internal -> input node
-    d.nodeOf = elements::reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
-    d.internalOf.assign(n, 0);
-    for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
-
-    // distinct materials
+/// The distinct materials of the elements (d.materials, in first use order) and each element's
+/// index among them (-1 in mass-spring mode).
+std::vector<int> distinctMaterials(HEMLData& d, const std::vector<BaseMaterial*>& elementMaterial) {
+    const size_t ne = d.nElements;
     std::vector<int> matIndex(ne, -1);
     d.materials.clear();
     if (!d.massSpring) {
@@ -233,24 +223,31 @@ void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMat
             matIndex[e] = it->second;
         }
     }
-    m_fns.clear();
-    for (auto* m : d.materials) m_fns.push_back(d.mixed ? loopsFor<float>(m) : loopsFor<double>(m));
+    return matIndex;
+}
 
-    // element order: by material, then by lowest internal node (locality of the block buffers)
+/// The element order: by material, then by lowest internal node (locality of the block buffers).
+std::vector<int> elementOrder(const HEMLData& d, const Tetrahedra& tets, const std::vector<int>& matIndex) {
+    const size_t ne = tets.size();
     std::vector<int> order(ne);
     std::iota(order.begin(), order.end(), 0);
     std::vector<int> minNode(ne);
     for (size_t e = 0; e < ne; ++e) {
-        int m = d.internalOf[m_tets[e][0]];
-        for (int a = 1; a < 4; ++a) m = std::min(m, d.internalOf[m_tets[e][a]]);
+        int m = d.internalOf[tets[e][0]];
+        for (int a = 1; a < 4; ++a) m = std::min(m, d.internalOf[tets[e][a]]);
         minNode[e] = m;
     }
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
         if (matIndex[a] != matIndex[b]) return matIndex[a] < matIndex[b];
         return minNode[a] < minNode[b];
     });
+    return order;
+}
 
-    // blocks: per material segment, near kBlockSize elements each, padded to kLanes
+/// The blocks: per material segment of the order, near kBlockSize elements each, padded to kLanes
+/// (d.blocks, d.elementOf, d.nSlots).
+void buildBlocks(HEMLData& d, const std::vector<int>& order, const std::vector<int>& matIndex) {
+    const size_t ne = order.size();
     d.blocks.clear();
     d.elementOf.clear();
     for (size_t s = 0; s < ne;) {
@@ -270,19 +267,16 @@ void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMat
         s = t;
     }
     d.nSlots = d.elementOf.size();
-    d.slotOf.assign(ne, -1);
-    // (the ordering scratch freed before the per-slot arrays come: 12 bytes an element at the peak)
-    std::vector<int>().swap(order);
-    std::vector<int>().swap(minNode);
-    std::vector<int>().swap(matIndex);
+}
 
-    // per-slot data (computed in double; precision="mixed" rounds it to float below)
+/// The per-slot arrays, zeroed: the node indices, and the element data the mode needs (G for a
+/// material, spring stiffness and rest length in mass-spring mode, the fibre rows when used).
+void allocateSlots(HEMLData& d, bool anyI4, bool anyI6) {
     const size_t S = d.nSlots;
     for (auto& v : d.node) v.assign(S, 0);
     ElementArrays<double>& el = d.el;
     el.vol.assign(S, 0.0);
     el.invDetV.assign(S, 0.0);
-    const bool anyI4 = !m_dirA.empty(), anyI6 = !m_dirB.empty();
     for (int k = 0; k < 6; ++k) {
         el.G[k].assign(d.massSpring ? 0 : S, 0.0);
         el.kk[k].assign(d.massSpring ? S : 0, 0.0);
@@ -292,11 +286,50 @@ void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMat
         el.w4[k].assign(anyI4 ? S : 0, 0.0);
         el.w6[k].assign(anyI6 ? S : 0, 0.0);
     }
+}
 
+} // namespace
+
+void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMaterial*>& elementMaterial) {
+    HEMLData& d = *m_data;
+    const size_t n = rest.size(), ne = m_tets.size();
+    d.nNodes = n;
+    d.nElements = ne;
+
+    // node order
+    // reverse Cuthill-McKee (docs/performance.md, lesson 5): internal -> input node
+    d.nodeOf = elements::reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
+    d.internalOf.assign(n, 0);
+    for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
+
+    {
+        const std::vector<int> matIndex = distinctMaterials(d, elementMaterial);
+        m_fns.clear();
+        for (auto* m : d.materials) m_fns.push_back(d.mixed ? loopsFor<float>(m) : loopsFor<double>(m));
+        buildBlocks(d, elementOrder(d, m_tets, matIndex), matIndex);
+    }  // (the ordering scratch freed before the per-slot arrays come: 12 bytes an element at the peak)
+    d.slotOf.assign(ne, -1);
+
+    // per-slot data (computed in double; precision="mixed" rounds it to float below)
+    allocateSlots(d, !m_dirA.empty(), !m_dirB.empty());
+    fillSlots(rest);
+
+    d.totalVolume = 0;
+    for (size_t s = 0; s < d.nSlots; ++s) d.totalVolume += d.el.vol[s];
+    if (d.mixed) roundToFloat(d);
+
+    buildNodeRows(d);
+    setUpVisco(d, m_visco, d.nSlots);
+}
+
+void HEMLForceField::fillSlots(const Positions& rest) {
+    HEMLData& d = *m_data;
+    ElementArrays<double>& el = d.el;
+    const bool anyI4 = !m_dirA.empty(), anyI6 = !m_dirB.empty();
     // edges shared between tetrahedra (mass-spring mode splits k between them)
     const elements::EdgeShares shares(d.massSpring ? m_tets : Tetrahedra{});
 
-    for (size_t slot = 0; slot < S; ++slot) {
+    for (size_t slot = 0; slot < d.nSlots; ++slot) {
         const bool pad = d.elementOf[slot] < 0;
         const int e = pad ? -1 - d.elementOf[slot] : d.elementOf[slot];
         if (!pad) d.slotOf[e] = int(slot);
@@ -333,13 +366,6 @@ void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMat
             for (int q = 0; q < 3; ++q) el.w6[q][slot] = w[q];
         }
     }
-
-    d.totalVolume = 0;
-    for (size_t s = 0; s < S; ++s) d.totalVolume += el.vol[s];
-    if (d.mixed) roundToFloat(d);
-
-    buildNodeRows(d);
-    setUpVisco(d, m_visco, S);
 }
 
 void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
@@ -512,7 +538,8 @@ double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) co
     }
     // the density, else the total mass over the mesh volume (the element layer's one rule)
     const double V = d.totalVolume;
-    // (the altitudes from the rest shape here, once: not kept per element, issue 17's peak memory)
+    // (the altitudes from the rest shape here, once: not kept per element, for the peak memory:
+    // docs/performance.md, "Peak memory, HEML")
     const auto altitude = [&](size_t e) {
         const auto& t = m_tets[e];
         const Vec3 &p0 = m_rest[t[0]], &p1 = m_rest[t[1]], &p2 = m_rest[t[2]], &p3 = m_rest[t[3]];

@@ -2,7 +2,7 @@
 /// Internal to HEMLForceField: the element data as structure of arrays and the element loop
 /// (HEML Algorithm 2, its per-element math in fascia/elements/EdgeForm.h, shared with the device step), templated on how the law is evaluated (an inlined built-in law, a batched
 /// virtual call for any other material, or the mass-spring energy of eq. (38)) and on the scalar
-/// type T of the element data and math: double, or float for precision="mixed" (issue 17). The
+/// type T of the element data and math: double, or float for precision="mixed" (docs/design.md, section 3). The
 /// element math is written once for both; node positions, the block's node rows and the energy
 /// sum are double in both.
 #include "fascia/base/Simd.h"

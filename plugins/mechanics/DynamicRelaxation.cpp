@@ -1,6 +1,7 @@
 #include "DynamicRelaxation.h"
 #include "Integrator.h"
 #include "fascia/base/Error.h"
+#include "fascia/base/Format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,14 +11,9 @@
 
 namespace fascia::mechanics {
 
-namespace {
+using core::formatNumber;
 
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(3);
-    os << v;
-    return os.str();
-}
+namespace {
 
 double norm(const Positions& p) {
     double s = 0;
@@ -27,6 +23,24 @@ double norm(const Positions& p) {
 
 /// Increments kept for the rate estimate (rho over the last kWindow iterations).
 constexpr int kWindow = 20;
+
+/// The report's residual: rn over the load norm (0 without a load), and that norm.
+void setResidual(LoadStepReport& rep, double rn, double load) {
+    rep.residual = load > 0 ? rn / load : 0.0;
+    rep.load = load;
+}
+
+/// The report's rate rho (the geometric mean of the last kWindow ratios of the increments) and
+/// estimated displacement error rho / (1 - rho) ||du|| / ||u|| (0 once ||du|| is at duFloor).
+void estimateError(const std::vector<double>& incr, double duFloor, double u2, LoadStepReport& rep) {
+    const size_t m = incr.size();
+    const size_t w = std::min<size_t>(m - 1, kWindow);
+    double rho = 1.0;
+    if (w > 0 && incr[m - 1 - w] > 0) rho = std::pow(incr[m - 1] / incr[m - 1 - w], 1.0 / double(w));
+    const double err = incr.back() <= duFloor ? 0.0 : rho < 1 ? rho / (1 - rho) * incr.back() : INFINITY;
+    rep.rate = rho;
+    rep.displacementError = u2 > 0 ? err / std::sqrt(u2) : err == 0 ? 0.0 : INFINITY;
+}
 
 } // namespace
 
@@ -144,7 +158,7 @@ void DynamicRelaxation::estimateStiffness(core::MechanicalGroup& g, StateData& d
     x = d.start;
     if (!(lambda > 0) || !std::isfinite(lambda))
         core::throwSimulationError("[" + path() + "] step " + std::to_string(g.stepIndex) + ": the state '" +
-                                   s.name() + "' shows no stiffness (estimated largest eigenvalue " + num(lambda) +
+                                   s.name() + "' shows no stiffness (estimated largest eigenvalue " + formatNumber(lambda, 3) +
                                    "): a static solution needs an elastic force field that holds every free node");
     d.lambdaShape = lambda;
     scaleMass(d);
@@ -171,124 +185,140 @@ void DynamicRelaxation::step(core::MechanicalGroup& g, double t, double dt) {
                     name().c_str(), rep.loadStep, rep.time, rep.iterations, rep.residual, rep.rate,
                     rep.converged ? "" : ", not converged");
     if (!rep.converged)
-        warn("load step " + std::to_string(rep.loadStep) + " (t = " + num(T) + " s) did not converge in " +
-             std::to_string(rep.iterations) + " iterations: residual " + num(rep.residual) + " (tolerance " +
-             num(m_tolerance.get()) + "), rate " + num(rep.rate) + ", estimated displacement error " +
-             num(rep.displacementError) + " (tolerance " + num(m_displacementTolerance.get()) +
+        warn("load step " + std::to_string(rep.loadStep) + " (t = " + formatNumber(T, 3) + " s) did not converge in " +
+             std::to_string(rep.iterations) + " iterations: residual " + formatNumber(rep.residual, 3) + " (tolerance " +
+             formatNumber(m_tolerance.get(), 3) + "), rate " + formatNumber(rep.rate, 3) + ", estimated displacement error " +
+             formatNumber(rep.displacementError, 3) + " (tolerance " + formatNumber(m_displacementTolerance.get(), 3) +
              "); raise maxIterations, or check that the constraints hold the body (a free body has no static solution)");
     m_reports.push_back(rep);
+}
+
+DynamicRelaxation::Criteria DynamicRelaxation::criteria(const StateData& d) const {
+    Criteria cr;
+    cr.tol = m_tolerance.get();
+    cr.dtol = m_displacementTolerance.get();
+    // a residual at round-off: the force that a displacement of 1e-15 of the body's size (some 5
+    // rounding errors of the positions) gives in the stiffest mode; below it nothing can improve
+    double shapeNorm = 0;
+    for (double m : d.shape) shapeNorm += m * m;
+    cr.floor = 1e-15 * d.lambdaShape * d.diag * std::sqrt(shapeNorm);
+    // increments at the rounding of the positions (1e-15 of the body's size per component): the
+    // iteration cannot resolve the solution more finely, and the rate it shows is noise
+    double freeCount = 0;
+    for (double f : d.free) freeCount += f;
+    cr.duFloor = 1e-15 * d.diag * std::sqrt(freeCount);
+    return cr;
+}
+
+void DynamicRelaxation::updatePositions(StateData& d, Positions& x, double c) {
+    const double alpha = 2.0 / (2.0 + c), beta = (2.0 - c) / (2.0 + c);
+    for (size_t i = 0; i < x.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double xi = x[i][k];
+            x[i][k] = xi + beta * (xi - d.prev[i][k]) + alpha * d.invMass[3 * i + k] * d.r[i][k];
+            d.prev[i][k] = xi;
+        }
+}
+
+DynamicRelaxation::Increment DynamicRelaxation::increment(const core::BaseMechanicalState& s, const StateData& d,
+                                                          const Positions& rNew) {
+    // Rayleigh quotient of the increment: du . K du / du . M du, K du ~ -(r(n+1) - r(n))
+    Increment in;
+    const Positions& x = s.x();
+    for (size_t i = 0; i < x.size(); ++i) {
+        const Vec3 du = x[i] - d.prev[i];
+        in.kq -= du.dot(rNew[i] - d.r[i]);
+        in.du2 += du.squaredNorm();
+        for (int k = 0; k < 3; ++k)
+            if (d.invMass[3 * i + k] > 0) in.mq += du[k] * du[k] / d.invMass[3 * i + k];
+        in.u2 += (x[i] - s.x0()[i]).squaredNorm();
+    }
+    return in;
+}
+
+bool DynamicRelaxation::adapt(StateData& d, const Increment& du, const Criteria& cr, double& c) const {
+    const double q = du.mq > 0 ? du.kq / du.mq : 0.0;
+    if (du.mq > 0 && std::isfinite(du.kq)) c = 2.0 * std::sqrt(std::clamp(q, 1e-16, 1.0));
+    if (!(q > 4.0 / d.safety && std::isfinite(q) && du.du2 > 1e4 * cr.duFloor * cr.duFloor)) return false;
+    // an increment stiffer than the largest eigenvalue estimated: the body stiffened as it
+    // deformed (a Rayleigh quotient never exceeds the largest eigenvalue); make the mass heavier
+    // so that this mode sits at the estimate again, with 20 % to spare
+    d.lambdaShape *= 1.2 * q * d.safety / 4.0;
+    scaleMass(d);
+    return true;
+}
+
+void DynamicRelaxation::restart(core::MechanicalGroup& g, StateData& d, double t, int& restarts) {
+    if (++restarts > 4 || !std::isfinite(d.lambdaShape))
+        core::throwSimulationError("[" + path() + "] step " + std::to_string(g.stepIndex) +
+                                   ": dynamic relaxation diverges even with a 16 times heavier fictitious mass");
+    Positions& x = g.state->x();
+    x = d.start;
+    d.prev = x;
+    d.safety *= 2.0;
+    scaleMass(d);
+    g.computeForces(t);
+    residual(g, d, d.r);
+}
+
+bool DynamicRelaxation::converged(core::MechanicalGroup& g, StateData& d, double t, const Criteria& cr, double rn,
+                                  double& ext, LoadStepReport& rep) const {
+    setResidual(rep, rn, ext + norm(g.state->reaction()));
+    if (!cr.forceMet(rn, rep.load)) return false;
+    ext = loadNorm(g, d, t);  // the loads may follow the body (a pressure): measure them now
+    setResidual(rep, rn, ext + norm(g.state->reaction()));
+    return cr.forceMet(rn, rep.load) && rep.displacementError <= cr.dtol;
 }
 
 LoadStepReport DynamicRelaxation::relax(core::MechanicalGroup& g, StateData& d, double t) {
     core::BaseMechanicalState& s = *g.state;
     Positions& x = s.x();
-    const size_t n = x.size();
-    const double tol = m_tolerance.get(), dtol = m_displacementTolerance.get();
+    const Criteria cr = criteria(d);
     const long maxIt = m_maxIterations.get();
-    // a residual at round-off: the force that a displacement of 1e-15 of the body's size (some 5
-    // rounding errors of the positions) gives in the stiffest mode; below it nothing can improve
-    double shapeNorm = 0;
-    for (double m : d.shape) shapeNorm += m * m;
-    const double floor = 1e-15 * d.lambdaShape * d.diag * std::sqrt(shapeNorm);
-    auto forceMet = [&](double r, double l) { return r <= std::max(tol * l, floor); };
-    // increments at the rounding of the positions (1e-15 of the body's size per component): the
-    // iteration cannot resolve the solution more finely, and the rate it shows is noise
-    double freeCount = 0;
-    for (double f : d.free) freeCount += f;
-    const double duFloor = 1e-15 * d.diag * std::sqrt(freeCount);
     LoadStepReport rep;
     d.start = x;
     d.prev = x;
     g.computeForces(t);
     double rn = residual(g, d, d.r);
     double ext = loadNorm(g, d, t);
-    double load = ext + norm(s.reaction());
     const double rn0 = rn;
-    rep.residual = load > 0 ? rn / load : 0.0;
-    rep.load = load;
-    if (forceMet(rn, load)) {  // already in equilibrium (a load held)
+    setResidual(rep, rn, ext + norm(s.reaction()));
+    if (cr.forceMet(rn, rep.load)) {  // already in equilibrium (a load held)
         rep.converged = true;
         return rep;
     }
     bool unilateral = false;  // a constraint without a fixed node list (a contact) acts on the iterates
     for (auto* c : g.constraints) unilateral = unilateral || c->constrainedNodes().empty();
     std::vector<double> incr;  // ||du|| of the iterations
-    Positions rNew(n);
+    Positions rNew(x.size());
     int restarts = 0;
     int stalled = 0;
     double c = d.c;
     for (long it = 1; it <= maxIt; ++it) {
-        const double alpha = 2.0 / (2.0 + c), beta = (2.0 - c) / (2.0 + c);
-        for (size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k) {
-                const double xi = x[i][k];
-                x[i][k] = xi + beta * (xi - d.prev[i][k]) + alpha * d.invMass[3 * i + k] * d.r[i][k];
-                d.prev[i][k] = xi;
-            }
+        updatePositions(d, x, c);
         // the constraints' positions again: the held components are where they were, and a contact
         // (a tool) puts the nodes that moved into it back onto its surface
         if (unilateral) g.projectState(t);
         g.computeForces(t);
         rn = residual(g, d, rNew);
-        // Rayleigh quotient of the increment: du . K du / du . M du, K du ~ -(r(n+1) - r(n))
-        double kq = 0, mq = 0, du2 = 0, u2 = 0;
-        for (size_t i = 0; i < n; ++i) {
-            const Vec3 du = x[i] - d.prev[i];
-            kq -= du.dot(rNew[i] - d.r[i]);
-            du2 += du.squaredNorm();
-            for (int k = 0; k < 3; ++k)
-                if (d.invMass[3 * i + k] > 0) mq += du[k] * du[k] / d.invMass[3 * i + k];
-            u2 += (x[i] - s.x0()[i]).squaredNorm();
-        }
-        const double q = mq > 0 ? kq / mq : 0.0;
-        if (mq > 0 && std::isfinite(kq)) c = 2.0 * std::sqrt(std::clamp(q, 1e-16, 1.0));
+        const Increment du = increment(s, d, rNew);
         d.r.swap(rNew);
-        if (q > 4.0 / d.safety && std::isfinite(q) && du2 > 1e4 * duFloor * duFloor) {
-            // an increment stiffer than the largest eigenvalue estimated: the body stiffened as it
-            // deformed (a Rayleigh quotient never exceeds the largest eigenvalue); make the mass heavier
-            // so that this mode sits at the estimate again, with 20 % to spare
-            d.lambdaShape *= 1.2 * q * d.safety / 4.0;
-            scaleMass(d);
-            incr.clear();
-        }
-        if (!std::isfinite(rn) || rn > 1e8 * std::max({rn0, load, floor})) {
+        if (adapt(d, du, cr, c)) incr.clear();
+        if (!std::isfinite(rn) || rn > 1e8 * std::max({rn0, rep.load, cr.floor})) {
             // unstable: the stiffness grew beyond the estimate; start the step again with a heavier mass
-            if (++restarts > 4 || !std::isfinite(d.lambdaShape))
-                core::throwSimulationError("[" + path() + "] step " + std::to_string(g.stepIndex) +
-                                           ": dynamic relaxation diverges even with a 16 times heavier fictitious mass");
-            x = d.start;
-            d.prev = x;
-            d.safety *= 2.0;
-            scaleMass(d);
-            g.computeForces(t);
-            residual(g, d, d.r);
+            restart(g, d, t, restarts);
             incr.clear();
             c = 0;
             continue;
         }
-        incr.push_back(std::sqrt(du2));
+        incr.push_back(std::sqrt(du.du2));
         // no component moved: the updates are below the rounding of the positions and nothing changes
-        stalled = du2 == 0 ? stalled + 1 : 0;
-        const size_t m = incr.size();
-        const size_t w = std::min<size_t>(m - 1, kWindow);
-        double rho = 1.0;
-        if (w > 0 && incr[m - 1 - w] > 0) rho = std::pow(incr[m - 1] / incr[m - 1 - w], 1.0 / double(w));
-        const double err = incr.back() <= duFloor ? 0.0 : rho < 1 ? rho / (1 - rho) * incr.back() : INFINITY;
+        stalled = du.du2 == 0 ? stalled + 1 : 0;
         rep.iterations = it;
-        rep.rate = rho;
-        rep.displacementError = u2 > 0 ? err / std::sqrt(u2) : err == 0 ? 0.0 : INFINITY;
-        load = ext + norm(s.reaction());
-        rep.residual = load > 0 ? rn / load : 0.0;
-        rep.load = load;
-        if (forceMet(rn, load)) {
-            ext = loadNorm(g, d, t);  // the loads may follow the body (a pressure): measure them now
-            load = ext + norm(s.reaction());
-            rep.residual = load > 0 ? rn / load : 0.0;
-            rep.load = load;
-            if (forceMet(rn, load) && rep.displacementError <= dtol) {
-                rep.converged = true;
-                break;
-            }
+        estimateError(incr, cr.duFloor, du.u2, rep);
+        if (converged(g, d, t, cr, rn, ext, rep)) {
+            rep.converged = true;
+            break;
         }
         if (stalled >= 3) break;  // reported as not converged, at the residual reached
     }
@@ -354,7 +384,7 @@ std::string DynamicRelaxation::runSummary() const {
     }
     std::ostringstream os;
     os << "DynamicRelaxation '" << name() << "': " << m_reports.size() << " load steps, " << totalIterations()
-       << " iterations (most: " << most << " at step " << mostStep << "), largest residual " << num(worst) << ", ";
+       << " iterations (most: " << most << " at step " << mostStep << "), largest residual " << formatNumber(worst, 3) << ", ";
     if (failed)
         os << failed << " load step(s) did not converge";
     else

@@ -1,6 +1,7 @@
 #pragma once
 #include "fascia/sim/Mechanics.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -105,6 +106,31 @@ private:
     /// ||external forces|| + ||reactions||: the norm the residual is measured against.
     double loadNorm(core::MechanicalGroup& g, StateData& d, double t) const;
     LoadStepReport relax(core::MechanicalGroup& g, StateData& d, double t);
+    /// What relax measures its iterations against: the tolerances and the round-off floors.
+    struct Criteria {
+        double tol = 0, dtol = 0;
+        double floor = 0;    ///< the residual at round-off (the force field's answer to a 1e-15 displacement)
+        double duFloor = 0;  ///< the increment norm at the rounding of the positions
+        bool forceMet(double r, double load) const { return r <= std::max(tol * load, floor); }
+    };
+    Criteria criteria(const StateData& d) const;
+    /// One damped central-difference update of the positions (d.prev takes the old ones).
+    static void updatePositions(StateData& d, Positions& x, double c);
+    /// An iteration's increment du = x - d.prev: its Rayleigh quotient terms du . K du (K du from
+    /// the residuals d.r, rNew) and du . M du, ||du||^2 and ||u||^2.
+    struct Increment {
+        double kq = 0, mq = 0, du2 = 0, u2 = 0;
+    };
+    static Increment increment(const core::BaseMechanicalState& s, const StateData& d, const Positions& rNew);
+    /// The damping c = 2 omega_min from the increment's Rayleigh quotient q, and a heavier mass when q
+    /// is above the largest eigenvalue estimated (the body stiffened); true then (the rate starts again).
+    bool adapt(StateData& d, const Increment& du, const Criteria& cr, double& c) const;
+    /// The load step again from its start with a heavier fictitious mass; fails after 4 restarts.
+    void restart(core::MechanicalGroup& g, StateData& d, double t, int& restarts);
+    /// The report's residual after an iteration (the loads measured again once the force criterion
+    /// holds: they may follow the body); true when both criteria hold.
+    bool converged(core::MechanicalGroup& g, StateData& d, double t, const Criteria& cr, double rn, double& ext,
+                   LoadStepReport& rep) const;
 
     std::map<const core::BaseMechanicalState*, StateData> m_data;
     std::vector<LoadStepReport> m_reports;

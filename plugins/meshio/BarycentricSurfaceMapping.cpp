@@ -1,20 +1,12 @@
 #include "BarycentricSurfaceMapping.h"
 #include "TetLocator.h"
+#include "fascia/base/Format.h"
 #include "fascia/scene/Node.h"
 #include "fascia/surface/TriangleSurface.h"
 
-#include <sstream>
-
 namespace fascia::meshio {
 
-namespace {
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(4);
-    s << v;
-    return s.str();
-}
-} // namespace
+using core::formatNumber;
 
 void BarycentricSurfaceMapping::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
@@ -60,9 +52,10 @@ void BarycentricSurfaceMapping::init() {
     for (size_t v = 0; v < n; ++v) {
         if (m_tet[v] < 0) fail(m_filename, "vertex " + std::to_string(v + 1) + " of '" + m_filename.get().written + "' lies in no tetrahedron and near no boundary triangle of the body");
         if (m_distance[v] > limit)
-            fail(m_filename, "vertex " + std::to_string(v + 1) + " of '" + m_filename.get().written + "' at (" + fmt(m_rest[v][0]) + " " +
-                                 fmt(m_rest[v][1]) + " " + fmt(m_rest[v][2]) + ") is " + fmt(m_distance[v]) +
-                                 " m from the body, more than maxDistance = " + fmt(limit) +
+            fail(m_filename, "vertex " + std::to_string(v + 1) + " of '" + m_filename.get().written + "' at (" +
+                                 formatNumber(m_rest[v][0], 4) + " " + formatNumber(m_rest[v][1], 4) + " " +
+                                 formatNumber(m_rest[v][2], 4) + ") is " + formatNumber(m_distance[v], 4) +
+                                 " m from the body, more than maxDistance = " + formatNumber(limit, 4) +
                                  " m: is the surface in the body's rest coordinates (same units, same place)?");
     }
     m_points.assign(n, Vec3::Zero());

@@ -230,8 +230,8 @@ private:
         if (id < 0) fail(m_file, line, "negative node id " + std::to_string(id) + ": node ids must be positive");
         if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
             fail(m_file, line,
-                 "node " + std::to_string(id) + " has a non-finite coordinate (" + fmtNumber(x) + " " + fmtNumber(y) +
-                     " " + fmtNumber(z) + "); every coordinate must be a finite number");
+                 "node " + std::to_string(id) + " has a non-finite coordinate (" + formatNumber(x, 6) + " " + formatNumber(y, 6) +
+                     " " + formatNumber(z, 6) + "); every coordinate must be a finite number");
         m_b.mesh.points.emplace_back(x, y, z);
         m_ids.push_back(id);
         m_lines.push_back(line);

@@ -348,7 +348,7 @@ private:
             if (groups) {
                 const double g = groups->values[size_t(c)];
                 if (!(std::fabs(g) <= INT_MAX))
-                    m_sc.failAt(m_cellDataWhere, "the group " + fmtNumber(g) + " of cell " + std::to_string(c) + " in " +
+                    m_sc.failAt(m_cellDataWhere, "the group " + formatNumber(g, 6) + " of cell " + std::to_string(c) + " in " +
                                                      groups->name + " is not a whole number in range");
                 group = int(std::lround(g));
             }

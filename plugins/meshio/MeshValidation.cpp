@@ -105,8 +105,8 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
         const Vec3& x = mesh.points[i];
         if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
             core::throwInputError(placeOf(o.nodeFile, o.nodeLine, o.nodeByte, i),
-                 "node " + nodeName(o, int(i)) + " has a non-finite coordinate (" + fmtNumber(x[0]) + " " +
-                     fmtNumber(x[1]) + " " + fmtNumber(x[2]) + "); every coordinate must be a finite number");
+                 "node " + nodeName(o, int(i)) + " has a non-finite coordinate (" + formatNumber(x[0], 6) + " " +
+                     formatNumber(x[1], 6) + " " + formatNumber(x[2], 6) + "); every coordinate must be a finite number");
     }
 
     constexpr double kDegenerate = 1e-12;
@@ -126,8 +126,8 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
             const double l3 = longestEdgeCubed(mesh.points, e);
             if (!(std::abs(v) > kDegenerate * l3))
                 core::throwInputError(elementPlace(o, hex, i),
-                     elementName(o, hex, i) + " is degenerate: its volume is " + fmtNumber(v) +
-                         ", zero relative to its longest edge cubed (" + fmtNumber(l3) + "); its nodes (" +
+                     elementName(o, hex, i) + " is degenerate: its volume is " + formatNumber(v, 6) +
+                         ", zero relative to its longest edge cubed (" + formatNumber(l3, 6) + "); its nodes (" +
                          nodeListText(o, e) + ") are repeated, coincide or lie in one plane: "
                          "remove or re-mesh this element");
             if (v < 0) {
@@ -153,7 +153,7 @@ void validate(MeshData& mesh, const ElementOrigin& o, const ReadOptions& opt, Re
             notes.push_back(std::to_string(inverted) + " of " + std::to_string(elems.size()) + " " + kind +
                             " are inverted");
         core::throwInputError(elementPlace(o, hex, firstInverted),
-             elementName(o, hex, firstInverted) + " is inverted: its signed volume is " + fmtNumber(firstVolume) +
+             elementName(o, hex, firstInverted) + " is inverted: its signed volume is " + formatNumber(firstVolume, 6) +
                  " < 0 with its nodes in the file's order (" + nodeListText(o, elems[firstInverted]) +
                  "); reorder its nodes, or set fixOrientation to flip inverted elements when loading",
              std::move(notes));

@@ -22,6 +22,20 @@ void Monitor::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
     if (!m_st && m_tool.get()) m_st = m_tool->body();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
+    resolveNodes();
+    resolveForceField();
+    resolveCellFields();
+    findEnergyTerms();
+    const std::string header = headerRow();
+
+    const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
+    m_path = (fs::path(node()->context().outputDir) / file).string();
+    node()->context().claimOutput(m_path, *this);
+    m_header = header;  // the file is created at the first observation: init writes nothing (claimOutput
+    m_out.reset();      // has refused a file that could not be created)
+}
+
+void Monitor::resolveNodes() {
     if (m_group.isSet()) {
         auto* topo = node()->findInContext<core::BaseTopology>();
         if (!topo) fail(m_group, "group = \"" + m_group.get() + "\" but no mesh source is in the context");
@@ -36,6 +50,9 @@ void Monitor::init() {
         if (size_t(i) >= m_st->size())
             fail(m_indices, "node index " + std::to_string(i) + " is out of range: the state '" + m_st->name() + "' has " +
                                 std::to_string(m_st->size()) + " nodes");
+}
+
+void Monitor::resolveForceField() {
     if (auto* c = m_reactionOf.get(); c && c->node()->findInContext<core::BaseMechanicalState>() != m_st)
         fail(m_reactionOf, "the constraint '" + c->name() + "' acts on another state than '" + m_st->name() + "'");
     m_ff = m_forceField.get();
@@ -49,31 +66,49 @@ void Monitor::init() {
                     break;
                 }
     if (m_elements.isSet() && !m_ff) fail(m_elements, "elements are given but no element force field is in the context");
-    m_cellFields.clear();
-    if (m_ff && m_elements.isSet()) {
-        for (int e : m_elements.get())
-            if (size_t(e) >= m_ff->elementCount())
-                fail(m_elements, "element index " + std::to_string(e) + " is out of range: '" + m_ff->name() + "' has " +
-                                     std::to_string(m_ff->elementCount()) + " elements");
-        std::vector<core::CellField> fields;
-        m_ff->cellData(*m_st, fields);
-        std::vector<std::string> wanted;
-        std::istringstream ws(m_elementFields.get());
-        for (std::string w; ws >> w;) wanted.push_back(w);
-        std::vector<std::string> offered;
-        for (auto& f : fields) offered.push_back(f.name);
-        for (auto& w : wanted)
-            if (std::find(offered.begin(), offered.end(), w) == offered.end()) {
-                std::string all;
-                for (auto& o : offered) all += (all.empty() ? "" : ", ") + o;
-                fail(m_elementFields, "'" + m_ff->name() + "' offers no element quantity '" + w + "'", {"it offers: " + all});
-            }
-        for (auto& f : fields)
-            if (wanted.empty() || std::find(wanted.begin(), wanted.end(), f.name) != wanted.end())
-                m_cellFields.emplace_back(f.name, f.components);
-    }
+}
 
-    // header row with units
+void Monitor::resolveCellFields() {
+    m_cellFields.clear();
+    if (!m_ff || !m_elements.isSet()) return;
+    for (int e : m_elements.get())
+        if (size_t(e) >= m_ff->elementCount())
+            fail(m_elements, "element index " + std::to_string(e) + " is out of range: '" + m_ff->name() + "' has " +
+                                 std::to_string(m_ff->elementCount()) + " elements");
+    std::vector<core::CellField> fields;
+    m_ff->cellData(*m_st, fields);
+    std::vector<std::string> wanted;
+    std::istringstream ws(m_elementFields.get());
+    for (std::string w; ws >> w;) wanted.push_back(w);
+    std::vector<std::string> offered;
+    for (auto& f : fields) offered.push_back(f.name);
+    for (auto& w : wanted)
+        if (std::find(offered.begin(), offered.end(), w) == offered.end()) {
+            std::string all;
+            for (auto& o : offered) all += (all.empty() ? "" : ", ") + o;
+            fail(m_elementFields, "'" + m_ff->name() + "' offers no element quantity '" + w + "'", {"it offers: " + all});
+        }
+    for (auto& f : fields)
+        if (wanted.empty() || std::find(wanted.begin(), wanted.end(), f.name) != wanted.end())
+            m_cellFields.emplace_back(f.name, f.components);
+}
+
+void Monitor::findEnergyTerms() {
+    m_masses.clear();
+    m_energyFields.clear();
+    node()->root()->visit([&](const core::Node& n) {
+        if (n.findInContext<core::BaseMechanicalState>() != m_st) return;
+        for (auto* m : n.findAllLocal<core::BaseMass>()) m_masses.push_back(m);
+        for (auto* ff : n.findAllLocal<core::BaseForceField>())
+            if (ff->elementCount() > 0) m_energyFields.push_back(ff);
+    });
+    if (m_kineticEnergy.get() && m_masses.empty())
+        fail(m_kineticEnergy, "kineticEnergy needs the masses, but no mass acts on the state '" + m_st->name() + "'");
+    if (m_strainEnergy.get() && m_energyFields.empty())
+        fail(m_strainEnergy, "strainEnergy needs an element force field, but none acts on the state '" + m_st->name() + "'");
+}
+
+std::string Monitor::headerRow() const {
     std::ostringstream h;
     h << "time [s]";
     for (int i : m_nodes) {
@@ -90,19 +125,6 @@ void Monitor::init() {
         for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_force_" << axis[a] << " [N]";
         for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_torque_" << axis[a] << " [N m]";
     }
-    // the masses and the element force fields acting on the state, for the energies
-    m_masses.clear();
-    m_energyFields.clear();
-    node()->root()->visit([&](const core::Node& n) {
-        if (n.findInContext<core::BaseMechanicalState>() != m_st) return;
-        for (auto* m : n.findAllLocal<core::BaseMass>()) m_masses.push_back(m);
-        for (auto* ff : n.findAllLocal<core::BaseForceField>())
-            if (ff->elementCount() > 0) m_energyFields.push_back(ff);
-    });
-    if (m_kineticEnergy.get() && m_masses.empty())
-        fail(m_kineticEnergy, "kineticEnergy needs the masses, but no mass acts on the state '" + m_st->name() + "'");
-    if (m_strainEnergy.get() && m_energyFields.empty())
-        fail(m_strainEnergy, "strainEnergy needs an element force field, but none acts on the state '" + m_st->name() + "'");
     if (m_kineticEnergy.get()) h << ",kineticEnergy [J]";
     if (m_strainEnergy.get()) h << ",strainEnergy [J]";
     if (m_residual.get()) h << ",residual [N]";
@@ -121,12 +143,7 @@ void Monitor::init() {
                 h << " [" << unit << "]";
             }
         }
-
-    const std::string file = m_filename.isSet() ? m_filename.get() : name() + ".csv";
-    m_path = (fs::path(node()->context().outputDir) / file).string();
-    node()->context().claimOutput(m_path, *this);
-    m_header = h.str();  // the file is created at the first observation: init writes nothing (claimOutput
-    m_out.reset();       // has refused a file that could not be created)
+    return h.str();
 }
 
 void Monitor::observeFinal(double t, long step) {

@@ -52,6 +52,17 @@ public:
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to record (default: the one in the context)")};
 
 private:
+    /// The nodes to record (group, then indices), each checked against the state.
+    void resolveNodes();
+    /// The element force field (forceField, else the first in the context when elements are given),
+    /// and the reactionOf constraint and the force field checked to act on the state.
+    void resolveForceField();
+    /// The element quantities to record (elementFields, else all the force field offers).
+    void resolveCellFields();
+    /// The masses and the element force fields acting on the state, for the energy columns.
+    void findEnergyTerms();
+    /// The CSV header line: every column with its unit.
+    std::string headerRow() const;
     void writeRow(double t, long step);
     core::BaseMechanicalState* m_st = nullptr;
     IndexList m_nodes;

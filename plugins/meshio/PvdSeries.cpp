@@ -3,6 +3,7 @@
 #include "fascia/base/Error.h"
 #include "fascia/base/StateIO.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,17 @@
 namespace fs = std::filesystem;
 
 namespace fascia::meshio {
+
+SeriesFile seriesFile(const std::string& dir, const std::string& base, long step, const char* extension) {
+    char suffix[48];
+    std::snprintf(suffix, sizeof suffix, "_%06ld%s", step, extension);
+    SeriesFile f;
+    f.name = fs::path(base).filename().string() + suffix;
+    f.path = fs::path(dir) / fs::path(base).parent_path() / f.name;
+    std::error_code ec;
+    fs::create_directories(f.path.parent_path(), ec);
+    return f;
+}
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
     const fs::path p(path);

@@ -1,6 +1,7 @@
 #pragma once
 /// The .pvd index of a ParaView time series, shared by every series the exporters write (the
 /// VTKExporter's .vtu volume and .vtp surface, a visual surface's .vtp).
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +50,15 @@ private:
     size_t m_listed = 0;          ///< files listed in the .pvd on disk
     double m_lastWrite = 0;       ///< core::timerNow() (s) at its last rewrite
 };
+
+/// The file of one step of a series whose files are named by `base` (a filename= value, relative to
+/// the output folder `dir`): "<base's file name>_<step in 6 digits><extension>" in dir/<base's folder>,
+/// which is created.
+struct SeriesFile {
+    std::string name;            ///< the file's name, as the .pvd lists it
+    std::filesystem::path path;  ///< where it is written
+};
+SeriesFile seriesFile(const std::string& dir, const std::string& base, long step, const char* extension);
 
 /// Writes text to path through a temporary file and a rename (atomic on POSIX file systems).
 void writeFileAtomically(const std::string& path, const std::string& text);

@@ -2,6 +2,7 @@
 
 #include "fascia/base/Error.h"
 #include "fascia/base/InputFile.h"
+#include "fascia/base/Format.h"
 
 #include <algorithm>
 #include <cctype>
@@ -42,13 +43,6 @@ std::string lowerExtension(const std::string& path) {
 
 std::string plural(long long n, const std::string& word) {
     return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
-}
-
-std::string fmtNumber(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
 }
 
 void checkReadable(const std::string& path) {

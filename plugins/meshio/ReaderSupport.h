@@ -1,6 +1,8 @@
 #pragma once
 /// What every mesh reader shares: located errors, message formatting and file access. Private to
 /// the readers (fascia::meshio::detail); the public entry points are in MeshReaders.h.
+#include "fascia/base/Format.h"
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,8 +26,8 @@ std::string quoted(std::string_view s);
 std::string lowerExtension(const std::string& path);
 /// "1 node", "3 nodes".
 std::string plural(long long n, const std::string& word);
-/// A number with 6 significant digits.
-std::string fmtNumber(double v);
+/// Numbers in the readers' messages: formatNumber(v, 6), 6 significant digits.
+using core::formatNumber;
 
 /// Fails unless path names a regular file we can open.
 void checkReadable(const std::string& path);

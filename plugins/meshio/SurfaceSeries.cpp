@@ -11,7 +11,6 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include <cstdio>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -42,12 +41,9 @@ void SurfaceSeries::restoreState(core::StateReader& in, const std::string& prefi
 
 void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
     m_lastStep = step;
-    char suffix[32];
-    std::snprintf(suffix, sizeof suffix, "_%06ld.vtp", step);
-    const std::string fileName = fs::path(m_base).filename().string() + suffix;
-    const fs::path target = fs::path(m_dir) / fs::path(m_base).parent_path() / fileName;
+    const SeriesFile file = seriesFile(m_dir, m_base, step, ".vtp");
+    const fs::path& target = file.path;
     std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
 
     const Positions& p = *frame.points;
     vtkNew<vtkPolyData> poly;
@@ -94,7 +90,7 @@ void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
     }
     fs::rename(tmp, target, ec);
     if (ec) throw core::Error(core::ErrorKind::Output, m_owner->loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
-    m_pvd.add(t, fileName);
+    m_pvd.add(t, file.name);
 }
 
 } // namespace fascia::meshio

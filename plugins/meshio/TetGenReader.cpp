@@ -45,8 +45,8 @@ void readNodeFile(const std::string& nodeFile, MeshBuilder& b, std::vector<long 
         if (id < 0) fail(nodeFile, sn.line(), "negative point id " + std::to_string(id));
         if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
             fail(nodeFile, sn.line(),
-                 "point " + std::to_string(id) + " has a non-finite coordinate (" + fmtNumber(x) + " " + fmtNumber(y) +
-                     " " + fmtNumber(z) + "); every coordinate must be a finite number");
+                 "point " + std::to_string(id) + " has a non-finite coordinate (" + formatNumber(x, 6) + " " + formatNumber(y, 6) +
+                     " " + formatNumber(z, 6) + "); every coordinate must be a finite number");
         b.mesh.points.emplace_back(x, y, z);
         ids.push_back(id);
         lines.push_back(sn.line());

@@ -14,7 +14,6 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -91,49 +90,52 @@ void VTKExporter::observeFinal(double t, long step) {
     if (step != m_lastStep) writeStep(t, step);
 }
 
-void VTKExporter::writeStep(double t, long step) {
-    m_lastStep = step;
-    const std::string dir = node()->context().outputDir;
-    char suffix[32];
-    std::snprintf(suffix, sizeof suffix, "_%06ld.vtu", step);
-    const std::string fileName = fs::path(m_base).filename().string() + suffix;
-    const fs::path target = fs::path(dir) / fs::path(m_base).parent_path() / fileName;
-    std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
+namespace {
 
-    const size_t n = m_st->size();
-    vtkNew<vtkUnstructuredGrid> grid;
+/// One force field's cells in the grid (ff null: the mesh source's).
+struct Part {
+    const Tetrahedra* tets = nullptr;
+    const Hexahedra* hexes = nullptr;
+    core::BaseForceField* ff = nullptr;
+    size_t first = 0, count = 0;  ///< its cells in the grid
+};
+
+/// The cells of the grid, part by part, and how many there are in all.
+struct Cells {
+    std::vector<Part> parts;
+    size_t count = 0;
+};
+
+/// The cells: the elements of every element force field on the state, in scene order (each one's
+/// tetrahedra, then its hexahedra, the order of its cellData), else those of the mesh source.
+Cells findCells(const std::vector<core::BaseForceField*>& forceFields, const core::Node& node, size_t n) {
+    Cells c;
+    for (auto* ff : forceFields) {
+        Part p{ff->tetrahedra(), ff->hexahedra(), ff, c.count, 0};
+        p.count = (p.tets ? p.tets->size() : 0) + (p.hexes ? p.hexes->size() : 0);
+        c.count += p.count;
+        c.parts.push_back(p);
+    }
+    if (c.parts.empty())
+        if (auto* topo = node.findInContext<core::BaseTopology>(); topo && topo->meshData().points.size() == n) {
+            Part p{&topo->meshData().tetrahedra, &topo->meshData().hexahedra, nullptr, 0, 0};
+            p.count = p.tets->size() + p.hexes->size();
+            c.count = p.count;
+            c.parts.push_back(p);
+        }
+    return c;
+}
+
+/// The grid's points (the current positions) and cells; a vertex per node when there are no cells.
+void addGeometry(vtkUnstructuredGrid* grid, const core::BaseMechanicalState& st, const Cells& c) {
+    const size_t n = st.size();
     vtkNew<vtkPoints> pts;
     pts->SetDataTypeToDouble();
     pts->SetNumberOfPoints(vtkIdType(n));
-    for (size_t i = 0; i < n; ++i) pts->SetPoint(vtkIdType(i), m_st->x()[i].data());
+    for (size_t i = 0; i < n; ++i) pts->SetPoint(vtkIdType(i), st.x()[i].data());
     grid->SetPoints(pts);
-
-    // cells: the elements of every element force field on the state, in scene order (each one's
-    // tetrahedra, then its hexahedra, the order of its cellData), else those of the mesh source
-    struct Part {
-        const Tetrahedra* tets = nullptr;
-        const Hexahedra* hexes = nullptr;
-        core::BaseForceField* ff = nullptr;
-        size_t first = 0, count = 0;  ///< its cells in the grid
-    };
-    std::vector<Part> parts;
-    size_t cells = 0;
-    for (auto* ff : m_forceFields) {
-        Part p{ff->tetrahedra(), ff->hexahedra(), ff, cells, 0};
-        p.count = (p.tets ? p.tets->size() : 0) + (p.hexes ? p.hexes->size() : 0);
-        cells += p.count;
-        parts.push_back(p);
-    }
-    if (parts.empty())
-        if (auto* topo = node()->findInContext<core::BaseTopology>(); topo && topo->meshData().points.size() == n) {
-            Part p{&topo->meshData().tetrahedra, &topo->meshData().hexahedra, nullptr, 0, 0};
-            p.count = p.tets->size() + p.hexes->size();
-            cells = p.count;
-            parts.push_back(p);
-        }
-    grid->Allocate(vtkIdType(cells));
-    for (const Part& p : parts) {
+    grid->Allocate(vtkIdType(c.count));
+    for (const Part& p : c.parts) {
         if (p.tets)
             for (auto& e : *p.tets) {
                 vtkIdType ids[4] = {e[0], e[1], e[2], e[3]};
@@ -145,13 +147,17 @@ void VTKExporter::writeStep(double t, long step) {
                 grid->InsertNextCell(12 /* VTK_HEXAHEDRON */, 8, ids);
             }
     }
-    if (cells == 0) {
+    if (c.count == 0) {
         for (size_t i = 0; i < n; ++i) {
             vtkIdType id = vtkIdType(i);
             grid->InsertNextCell(1 /* VTK_VERTEX */, 1, &id);
         }
     }
+}
 
+/// The point data: displacement, velocity, force and reaction.
+void addPointData(vtkUnstructuredGrid* grid, const core::BaseMechanicalState& st) {
+    const size_t n = st.size();
     auto addPointVectors = [&](const char* name, auto&& value) {
         vtkNew<vtkDoubleArray> a;
         a->SetName(name);
@@ -163,72 +169,92 @@ void VTKExporter::writeStep(double t, long step) {
         }
         grid->GetPointData()->AddArray(a);
     };
-    addPointVectors("displacement", [&](size_t i) { return Vec3(m_st->x()[i] - m_st->x0()[i]); });
-    addPointVectors("velocity", [&](size_t i) { return m_st->v()[i]; });
-    addPointVectors("force", [&](size_t i) { return m_st->f()[i]; });
-    addPointVectors("reaction", [&](size_t i) { return m_st->reaction()[i]; });
+    addPointVectors("displacement", [&](size_t i) { return Vec3(st.x()[i] - st.x0()[i]); });
+    addPointVectors("velocity", [&](size_t i) { return st.v()[i]; });
+    addPointVectors("force", [&](size_t i) { return st.f()[i]; });
+    addPointVectors("reaction", [&](size_t i) { return st.reaction()[i]; });
+}
 
-    if (parts.size() > 1 && cells > 0) {
-        // which force field a cell belongs to (its index among them, in scene order), to threshold on in ParaView
-        vtkNew<vtkDoubleArray> a;
-        a->SetName("forceField");
-        a->SetNumberOfTuples(vtkIdType(cells));
-        for (size_t i = 0; i < parts.size(); ++i)
-            for (size_t c = 0; c < parts[i].count; ++c) a->SetValue(vtkIdType(parts[i].first + c), double(i));
-        grid->GetCellData()->AddArray(a);
-    }
-    if (m_cellData.get() && cells > 0) {
-        // one array per quantity over all cells; cells of a force field that does not offer it are NaN
-        std::vector<vtkSmartPointer<vtkDoubleArray>> arrays;
-        for (const Part& p : parts) {
-            if (!p.ff) continue;
-            std::vector<core::CellField> fields;
-            p.ff->cellData(*m_st, fields);
-            for (auto& f : fields) {
-                if (f.components <= 0 || f.values.size() != size_t(f.components) * p.count) continue;
-                auto find = [&](const std::string& name) -> vtkDoubleArray* {
-                    for (auto& x : arrays)
-                        if (name == x->GetName()) return x;
-                    return nullptr;
-                };
-                // the same name with another shape: an array of its own ("J_name", then "J_name_2" ...)
-                std::string name = f.name;
-                vtkDoubleArray* a = find(name);
-                for (int k = 1; a && a->GetNumberOfComponents() != f.components; ++k) {
-                    name = f.name + "_" + p.ff->name() + (k > 1 ? "_" + std::to_string(k) : "");
-                    a = find(name);
-                }
-                if (!a) {
-                    arrays.push_back(vtkSmartPointer<vtkDoubleArray>::New());
-                    a = arrays.back();
-                    a->SetName(name.c_str());
-                    a->SetNumberOfComponents(f.components);
-                    a->SetNumberOfTuples(vtkIdType(cells));
-                    a->Fill(std::numeric_limits<double>::quiet_NaN());
-                }
-                for (size_t c = 0; c < p.count; ++c) a->SetTuple(vtkIdType(p.first + c), f.values.data() + c * f.components);
+/// The cell array "forceField": which force field a cell belongs to (its index among them, in
+/// scene order), to threshold on in ParaView.
+void addForceFieldIndex(vtkUnstructuredGrid* grid, const Cells& c) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName("forceField");
+    a->SetNumberOfTuples(vtkIdType(c.count));
+    for (size_t i = 0; i < c.parts.size(); ++i)
+        for (size_t k = 0; k < c.parts[i].count; ++k) a->SetValue(vtkIdType(c.parts[i].first + k), double(i));
+    grid->GetCellData()->AddArray(a);
+}
+
+/// The force fields' cell data: one array per quantity over all cells; cells of a force field that
+/// does not offer it are NaN.
+void addCellData(vtkUnstructuredGrid* grid, const core::BaseMechanicalState& st, const Cells& c) {
+    std::vector<vtkSmartPointer<vtkDoubleArray>> arrays;
+    for (const Part& p : c.parts) {
+        if (!p.ff) continue;
+        std::vector<core::CellField> fields;
+        p.ff->cellData(st, fields);
+        for (auto& f : fields) {
+            if (f.components <= 0 || f.values.size() != size_t(f.components) * p.count) continue;
+            auto find = [&](const std::string& name) -> vtkDoubleArray* {
+                for (auto& x : arrays)
+                    if (name == x->GetName()) return x;
+                return nullptr;
+            };
+            // the same name with another shape: an array of its own ("J_name", then "J_name_2" ...)
+            std::string name = f.name;
+            vtkDoubleArray* a = find(name);
+            for (int k = 1; a && a->GetNumberOfComponents() != f.components; ++k) {
+                name = f.name + "_" + p.ff->name() + (k > 1 ? "_" + std::to_string(k) : "");
+                a = find(name);
             }
+            if (!a) {
+                arrays.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+                a = arrays.back();
+                a->SetName(name.c_str());
+                a->SetNumberOfComponents(f.components);
+                a->SetNumberOfTuples(vtkIdType(c.count));
+                a->Fill(std::numeric_limits<double>::quiet_NaN());
+            }
+            for (size_t k = 0; k < p.count; ++k) a->SetTuple(vtkIdType(p.first + k), f.values.data() + k * f.components);
         }
-        for (auto& a : arrays) grid->GetCellData()->AddArray(a);
     }
+    for (auto& a : arrays) grid->GetCellData()->AddArray(a);
+}
 
+/// Writes the grid to target under a temporary name, renamed when complete: "" or what failed.
+std::string writeGrid(vtkUnstructuredGrid* grid, const fs::path& target, const std::string& compression) {
+    std::error_code ec;
     const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp");
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetFileName(tmp.string().c_str());
     writer->SetInputData(grid);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
-    const std::string& compression = m_compression.get();
     if (compression == "lz4") writer->SetCompressorTypeToLZ4();
     else if (compression == "zlib") writer->SetCompressorTypeToZLib();
     else writer->SetCompressorTypeToNone();
     if (writer->Write() != 1) {
         fs::remove(tmp, ec);
-        failOutput(&m_filename, "cannot write '" + target.string() + "' (disk full, or no permission on the output folder?)");
+        return "cannot write '" + target.string() + "' (disk full, or no permission on the output folder?)";
     }
     fs::rename(tmp, target, ec);
-    if (ec) failOutput(&m_filename, "cannot rename '" + tmp.string() + "': " + ec.message());
-    m_pvd.add(t, fileName);
+    return ec ? "cannot rename '" + tmp.string() + "': " + ec.message() : "";
+}
+
+} // namespace
+
+void VTKExporter::writeStep(double t, long step) {
+    m_lastStep = step;
+    const SeriesFile file = seriesFile(node()->context().outputDir, m_base, step, ".vtu");
+    const Cells cells = findCells(m_forceFields, *node(), m_st->size());
+    vtkNew<vtkUnstructuredGrid> grid;
+    addGeometry(grid, *m_st, cells);
+    addPointData(grid, *m_st);
+    if (cells.parts.size() > 1 && cells.count > 0) addForceFieldIndex(grid, cells);
+    if (m_cellData.get() && cells.count > 0) addCellData(grid, *m_st, cells);
+    if (const std::string e = writeGrid(grid, file.path, m_compression.get()); !e.empty()) failOutput(&m_filename, e);
+    m_pvd.add(t, file.name);
     if (m_surfaceSeries.started()) writeSurface(t, step);
 }
 

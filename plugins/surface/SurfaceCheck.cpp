@@ -1,8 +1,8 @@
 // The closed, edge-manifold, consistently oriented check: fascia/surface/TriangleSurface.h.
 #include "fascia/surface/TriangleSurface.h"
+#include "fascia/base/Format.h"
 
 #include <algorithm>
-#include <sstream>
 
 namespace fascia::surface {
 
@@ -19,10 +19,8 @@ struct HalfEdge {
 };
 
 std::string at(const Positions& p, int v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << "(" << p[size_t(v)][0] << " " << p[size_t(v)][1] << " " << p[size_t(v)][2] << ")";
-    return s.str();
+    const Vec3& x = p[size_t(v)];
+    return "(" + core::formatNumber(x[0], 6) + " " + core::formatNumber(x[1], 6) + " " + core::formatNumber(x[2], 6) + ")";
 }
 } // namespace
 

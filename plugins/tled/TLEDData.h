@@ -160,7 +160,7 @@ struct TLEDForceField::Impl {
     }
 };
 
-/// The kernel of a group (TLEDKernel.cpp): the inlined loop of its built-in law, else the generic
+/// The kernel of a group (TLEDKernelDouble.cpp): the inlined loop of its built-in law, else the generic
 /// one, in double or (mixed) in float.
 void chooseKernel(TLEDForceField::Impl::Group& g, bool mixed);
 /// The same for one scalar type (TLEDKernelDouble.cpp, TLEDKernelFloat.cpp).

@@ -4,6 +4,7 @@
 #include "TLEDData.h"
 
 #include "fascia/elements/NodeOrder.h"
+#include "fascia/base/Format.h"
 #include "fascia/elements/FibreField.h"
 #include "fascia/elements/Geometry.h"
 #include "fascia/elements/GroupMaterials.h"
@@ -13,9 +14,10 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <sstream>
 
 namespace fascia::tled {
+
+using core::formatNumber;
 
 using materials::BaseMaterial;
 using Impl = TLEDForceField::Impl;
@@ -32,13 +34,6 @@ template struct ElementSet<4>;
 template struct ElementSet<8>;
 
 namespace {
-
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
-}
 
 /// Everything precompute's steps share.
 struct Setup {
@@ -166,7 +161,7 @@ void fillTets(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, si
         const double longest = elements::tetLongestEdge(p0, p1, p2, p3);
         if (!(std::abs(det) / 6 > 1e-12 * longest * longest * longest))
             ff.fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
-                    std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate (volume " + fmt(det / 6) + " m^3)");
+                    std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate (volume " + formatNumber(det / 6, 6) + " m^3)");
         const Mat3 Di = D.inverse();
         // dN_1..dN_3 = the rows of D^-1 (dN_0 = -(dN_1 + dN_2 + dN_3) is not stored: the kernel forms it)
         for (int a = 0; a < 3; ++a)
@@ -199,7 +194,7 @@ void fillHexes(const TLEDForceField& ff, Impl& im, const Setup& su, size_t gi, s
         if (!(std::abs(V) > 1e-12 * longest * longest * longest)) {
             std::string nodes;
             for (int v : h) nodes += " " + std::to_string(v);
-            ff.fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + fmt(V) + " m^3)");
+            ff.fail("hexahedron " + std::to_string(e) + " (nodes" + nodes + ") is degenerate (volume " + formatNumber(V, 6) + " m^3)");
         }
         // hourglass control: gamma_q = h_q - (c_q . dN/dX), c_q = sum_a h_qa X_a; the loop needs c_q only
         double hc[12];
@@ -265,7 +260,7 @@ size_t compactRows(Impl& im) {
 /// The blocks' force buffers (TLEDForceField::m_nodeBuffers): the node ranges addBlocks recorded,
 /// or compact rows where the ranges would take more than 1.5 times as many rows. A compact row
 /// costs about 1.5 times a range row per step (the copy-in of u, the per-node row lists of the sum;
-/// docs/performance.md, issue 17, session 13).
+/// docs/performance.md, lesson 5).
 void finishBuffers(const TLEDForceField& ff, Impl& im, const std::string& choice) {
     size_t rangeRows = 0;
     for (size_t b = 0; b < im.buffers.blockCount(); ++b) rangeRows += im.buffers.rowCount(b);

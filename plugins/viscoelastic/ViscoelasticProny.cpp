@@ -2,22 +2,15 @@
 #include "fascia/viscoelastic/ElementHistory.h"
 
 #include "fascia/base/Error.h"
+#include "fascia/base/Format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace fascia::viscoelastic {
 
-ElementHistory::~ElementHistory() = default;  // (its key function: one type_info for every plugin)
+using core::formatNumber;
 
-namespace {
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(10);
-    s << v;
-    return s.str();
-}
-} // namespace
+ElementHistory::~ElementHistory() = default;  // (its key function: one type_info for every plugin)
 
 void ViscoelasticProny::init() {
     const NumberList& a = m_alpha.get();
@@ -29,14 +22,14 @@ void ViscoelasticProny::init() {
     // ranges of single entries are checked at parse time; repeat them here for values set from code
     for (size_t i = 0; i < a.size(); ++i) {
         if (!(a[i] > 0) || !std::isfinite(a[i]))
-            fail(m_alpha, "alpha entry " + std::to_string(i) + " (" + fmt(a[i]) + ") must be > 0");
+            fail(m_alpha, "alpha entry " + std::to_string(i) + " (" + formatNumber(a[i], 10) + ") must be > 0");
         if (!(t[i] > 0) || !std::isfinite(t[i]))
-            fail(m_tau, "tau entry " + std::to_string(i) + " (" + fmt(t[i]) + " s) must be > 0");
+            fail(m_tau, "tau entry " + std::to_string(i) + " (" + formatNumber(t[i], 10) + " s) must be > 0");
     }
     double sum = 0;
     for (double v : a) sum += v;
     if (!(sum < 1))
-        fail(m_alpha, "the alpha entries sum to " + fmt(sum) +
+        fail(m_alpha, "the alpha entries sum to " + formatNumber(sum, 10) +
                           ", which leaves no long-term stiffness (alpha_inf = 1 - sum must be > 0, TLED eq. (6))",
              {"reduce the alpha_i so that their sum is below 1"});
     if (m_dt > 0) coefficients(m_dt, m_A, m_B);
@@ -44,7 +37,7 @@ void ViscoelasticProny::init() {
 
 void ViscoelasticProny::dtChanged(double dt) {
     if (!(dt > 0) || !std::isfinite(dt))
-        core::throwInputError(loc(), "ViscoelasticProny '" + name() + "': time step " + fmt(dt) + " s is not positive");
+        core::throwInputError(loc(), "ViscoelasticProny '" + name() + "': time step " + formatNumber(dt, 10) + " s is not positive");
     m_dt = dt;
     coefficients(dt, m_A, m_B);
 }

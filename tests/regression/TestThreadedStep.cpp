@@ -221,7 +221,7 @@ TEST_CASE("the threaded step's team cuts a probe short that is twice as slow, an
 TEST_CASE("the threaded step's team keeps all threads that are faster on average despite periodic stalls, and leaves a lasting slowdown",
           "[threaded]") {
     using fascia::core::TeamChoice;
-    // a loaded core at 197k tetrahedra (measured, session 15): all threads take 1.7, 1.7 and 4.5 ms
+    // a loaded core at 197k tetrahedra (measured: docs/performance.md, "a step team of our own"): all threads take 1.7, 1.7 and 4.5 ms
     // in turn (a worker preempted while it holds a task), mean 2.63; one thread 3.4 ms, but one step
     // of the first probe stalls (13 ms: mean 6.6). All threads stay
     TeamChoice t;

@@ -6,18 +6,19 @@
 #include "DistanceGrid.h"
 #include "SurfaceMeshes.h"
 #include "SurfaceTool.h"
+#include "fascia/base/Format.h"
 #include "fascia/surface/TriangleSurface.h"
 
 #include <omp.h>
 
 #include <random>
-#include <sstream>
 
 using namespace contacttest;
 using namespace surfacetest;
 using fascia::contact::DistanceGrid;
 using fascia::contact::SurfaceTool;
 using fascia::contact::TriangleTree;
+using fascia::core::formatNumber;
 
 namespace {
 
@@ -26,13 +27,6 @@ template <class Mesh, class Triangle>
 Vec3 onTriangle(const Mesh& m, const Triangle& t, double a, double b) {
     const Vec3& p0 = m.points[size_t(t[0])];
     return p0 + a * (m.points[size_t(t[1])] - p0) + b * (m.points[size_t(t[2])] - p0);
-}
-
-std::string num(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
 }
 
 /// Checks grid and query against the exact distance of the voxels at `count` points spread over
@@ -174,7 +168,8 @@ TEST_CASE("A tessellated sphere indents a block with a force between the SphereT
     TempDir dir("ball");
     const std::string obj = writeObj(dir.file("ball.obj"), ball);
     auto scene = [&](const std::string& tool) {
-        const std::string start = num(c[0]) + " " + num(c[1]) + " " + num(c[2] + d), end = num(c[0]) + " " + num(c[1]) + " " + num(c[2]);
+        const std::string xy = formatNumber(c[0], 17) + " " + formatNumber(c[1], 17) + " ";
+        const std::string start = xy + formatNumber(c[2] + d, 17), end = xy + formatNumber(c[2], 17);
         return blockScene("<SemiImplicitEuler damping=\"60\"/>", "    <FixedConstraint name=\"base\" group=\"zmin\"/>\n",
                           "  " + tool + " body=\"@block/state\" keyTimes=\"0 0.4\" keyPositions=\"" + start + "  " + end + "\"/>\n",
                           "dt=\"auto\"", "12 12 6");
@@ -184,8 +179,8 @@ TEST_CASE("A tessellated sphere indents a block with a force between the SphereT
         sim->runUntil(0.8);
         return toolOf(*sim, "ball").force()[2];
     };
-    const double outer = force("<SphereTool name=\"ball\" radius=\"" + num(R) + "\"");
-    const double inner = force("<SphereTool name=\"ball\" radius=\"" + num(rin) + "\"");
+    const double outer = force("<SphereTool name=\"ball\" radius=\"" + formatNumber(R, 17) + "\"");
+    const double inner = force("<SphereTool name=\"ball\" radius=\"" + formatNumber(rin, 17) + "\"");
     const double surf = force("<SurfaceTool name=\"ball\" mesh=\"" + obj + "\" resolution=\"24\"");  // (the sphere's centre is equally far from every triangle: the costliest grid to build)
     CAPTURE(outer, inner, surf);
     CHECK(inner > 0);  // the block pushes the ball up

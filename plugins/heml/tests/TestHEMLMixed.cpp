@@ -1,4 +1,4 @@
-// HEMLForceField precision="mixed" (issue 17: element data and element math in float, node state,
+// HEMLForceField precision="mixed" (docs/design.md, section 3: element data and element math in float, node state,
 // force sums and the energy sum in double): forces and energy agree with precision="double" on a
 // deformed mesh (a smooth random displacement of a few per cent strain, and one of about 30 %) for
 // an isotropic law, fibre laws, a user material through the double-only evaluate() and mass-spring

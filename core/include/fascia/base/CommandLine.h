@@ -16,6 +16,7 @@
 ///
 /// A bad command line prints "PROGRAM: message" and "(see PROGRAM --help)" on stderr and exits 1.
 #include "fascia/base/Error.h"
+#include "fascia/base/Format.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -106,12 +107,8 @@ public:
     }
     [[noreturn]] void unknownOption() const { fail("unknown option '" + m_arg + "'"); }
 
-    /// "%g" of x, as the messages write numbers.
-    static std::string realText(double x) {
-        char b[32];
-        std::snprintf(b, sizeof b, "%g", x);
-        return b;
-    }
+    /// x with 6 significant digits ("%g"), as the messages write numbers.
+    static std::string realText(double x) { return formatNumber(x, 6); }
 
 private:
     const char* value() { return m_i + 1 < m_argc ? m_argv[++m_i] : nullptr; }

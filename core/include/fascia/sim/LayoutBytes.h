@@ -1,6 +1,7 @@
 #pragma once
 /// What one force evaluation moves through memory, counted from a force field's arrays as they are
-/// after init (fascia-bench reports it per element and step beside the measured time; issue 17).
+/// after init (fascia-bench reports it per element and step beside the measured time;
+/// docs/performance.md, "Method", bytes from the layout).
 #include <cstddef>
 
 namespace fascia::core {

@@ -253,7 +253,7 @@ protected:
 /// The team of the threaded step (ThreadedStep.h), chosen from the measured steps: all the OpenMP
 /// threads, or one thread when the steps measured on one are faster (another process holds a core:
 /// a thread preempted while it holds a task of the step team stalls the step, StepTeam.h,
-/// docs/performance.md, issue 17). The
+/// docs/performance.md, lesson 17). The
 /// results are bitwise the same either way (principle 5), so switching costs nothing but the probes:
 /// every `interval` steps it runs kProbe steps on the other team, and switches when the mean of
 /// those steps is 10 % below the mean of the current team's recent steps; the interval doubles (up to 1,024 steps) while the choice stands.
@@ -265,8 +265,9 @@ protected:
 /// more than 1.25 times that median (a lasting slowdown, such as a scheduler that put the threads
 /// on the loaded core), at most once every kKeep steps. Medians, not means, of the other team:
 /// one stalled step in a probe of three (a worker preempted while it held a task) no longer hides
-/// that team for the rest of the run (issue 17, session 15). After a probe 3 times slower than the
-/// current team the interval grows 4 times instead of 2 (each such probe step costs milliseconds).
+/// that team for the rest of the run (docs/performance.md, "a step team of our own", its two
+/// traces). After a probe 3 times slower than the current team the interval grows 4 times instead
+/// of 2 (each such probe step costs milliseconds).
 struct TeamChoice {
     static constexpr int kKeep = 8, kProbe = 3, kFirstProbe = 4;
     double seconds[2][kKeep] = {};  ///< recent step times (s) per team: [0] one thread, [1] all

@@ -188,6 +188,9 @@ private:
     IntegratorLimit integratorLimit() const;
     /// The located "no time step" error when dt is not set.
     void requireDt() const;
+    /// init's time step, set with setDt: the load options' dt, else for dt="auto" the smallest stable
+    /// step of the force fields and integrators times dtSafety, else the root's dt (none: unset).
+    void chooseDt();
     /// Sets dt, warning above the critical step when asked; every component hears it.
     void applyDt(double dt, bool warnAboveCritical);
     /// One step of dt; when `end` is a number, the time after it is exactly `end` (a run's last step).

@@ -1,5 +1,5 @@
 #pragma once
-/// The threads of the threaded step (ThreadedStep.h; issue 17, "a loaded core").
+/// The threads of the threaded step (ThreadedStep.h; docs/performance.md, lesson 17: a loaded core).
 ///
 /// An OpenMP parallel region ends when every thread of its team has arrived, and its barriers wait
 /// for every thread too: when another process holds the core of one of them (a render or haptic

@@ -1,6 +1,6 @@
 #pragma once
 /// One job of the step team per step (docs/design.md, section 1, "the threaded step";
-/// docs/performance.md, issue 17). A force field that implements ThreadedForces splits its addForce
+/// docs/performance.md, lesson 17). A force field that implements ThreadedForces splits its addForce
 /// into stages (a node pass, element blocks, the ordered sum of its block buffers); an integrator
 /// whose update is node by node runs its step through stepThreaded, which runs, as the phases of one
 /// job of the step team (fascia/sim/StepTeam.h):

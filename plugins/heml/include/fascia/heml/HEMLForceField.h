@@ -32,7 +32,7 @@
 /// docs/materials.md, section 3. The history advances when forces are asked for at a new time,
 /// over the time elapsed since the last evaluation (fascia/viscoelastic/HistoryClock.h).
 ///
-/// Mixed precision (precision="mixed", issue 17): the element arrays (Vol, 1/det V, G, the fibre
+/// Mixed precision (precision="mixed", docs/design.md, section 3): the element arrays (Vol, 1/det V, G, the fibre
 /// w and the spring data) are stored in float and the element math runs in float: positions are
 /// gathered in double and the edges x_b - x_a formed in double (accurate differences), then rounded
 /// to float; the element's nodal forces are converted to double as they are added to the block's
@@ -152,6 +152,8 @@ public:
 
 private:
     void precompute(const Positions& rest, const std::vector<materials::BaseMaterial*>& elementMaterial);
+    /// precompute's per-slot data (HEML Algorithm 1) from the rest positions; a degenerate element fails.
+    void fillSlots(const Positions& rest);
     void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
