@@ -119,7 +119,7 @@ public:
         check(cudaStreamSynchronize(s), "the upload");
     }
     void upload(const std::vector<T>& h, cudaStream_t s) { upload(h.data(), h.size(), s); }
-    T* get() const { return m_p; }
+    T* data() const { return m_p; }
     size_t size() const { return m_n; }
 
 private:
@@ -240,11 +240,11 @@ public:
     }
     void launch(const StepArrays<T>& d, cudaStream_t s) override {
         if (m_nTets > 0) {
-            m_tetKernel<<<grid(m_nTets, m_tetBlock), m_tetBlock, 0, s>>>(d, m_p, m_tets.get(), m_nTets);
+            m_tetKernel<<<grid(m_nTets, m_tetBlock), m_tetBlock, 0, s>>>(d, m_p, m_tets.data(), m_nTets);
             check(cudaGetLastError(), "the tetrahedron kernel launch");
         }
         if (m_nHexes > 0) {
-            m_hexKernel<<<grid(m_nHexes, m_hexBlock), m_hexBlock, 0, s>>>(d, m_p, m_hexes.get(), m_nHexes);
+            m_hexKernel<<<grid(m_nHexes, m_hexBlock), m_hexBlock, 0, s>>>(d, m_p, m_hexes.data(), m_nHexes);
             check(cudaGetLastError(), "the hexahedron kernel launch");
         }
     }
@@ -304,6 +304,7 @@ public:
         check(cudaStreamCreateWithFlags(&m_stream, cudaStreamNonBlocking), "cudaStreamCreate");
         for (cudaEvent_t& e : m_targetsCopied) check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
         upload(toArrays<T>(s));
+        requireLayout(layoutErrors(s));
         forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
             m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>, T>>(s, g, law, block, m_stream));
         });
@@ -315,32 +316,32 @@ public:
         cudaStreamDestroy(m_stream);
     }
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
-        m_u.upload(std::vector<T>(u.begin(), u.end()), m_stream);
-        m_v.upload(std::vector<T>(v.begin(), v.end()), m_stream);
-        check(cudaMemcpyAsync(m_bad.get(), &kNone, sizeof kNone, cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync to the device");
+        m_a.u.upload(std::vector<T>(u.begin(), u.end()), m_stream);
+        m_a.v.upload(std::vector<T>(v.begin(), v.end()), m_stream);
+        check(cudaMemcpyAsync(m_a.bad.data(), &kNone, sizeof kNone, cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync to the device");
         wait();
     }
     void getState(std::vector<double>& u, std::vector<double>& v, std::vector<double>& r) override {
-        const size_t n = m_u.size();
-        const T* h = staged({{m_u.get(), n}, {m_v.get(), n}, {m_react.get(), n}});
+        const size_t n = m_a.u.size();
+        const T* h = staged({{m_a.u.data(), n}, {m_a.v.data(), n}, {m_a.react.data(), n}});
         u.assign(h, h + n);
         v.assign(h + n, h + 2 * n);
         r.assign(h + 2 * n, h + 3 * n);
     }
     void getIncrements(std::vector<double>& du) override {
-        const T* h = staged({{m_du.get(), m_du.size()}});
-        du.assign(h, h + m_du.size());
+        const T* h = staged({{m_a.du.data(), m_a.du.size()}});
+        du.assign(h, h + m_a.du.size());
     }
-    void setIncrements(const std::vector<double>& du) override { m_du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
+    void setIncrements(const std::vector<double>& du) override { m_a.du.upload(std::vector<T>(du.begin(), du.end()), m_stream); }
     void getPronyStates(std::vector<double>& Y) override {
-        const T* h = staged({{m_Y.get(), m_Y.size()}, {m_hY.get(), m_hY.size()}});
-        Y.assign(h, h + m_Y.size() + m_hY.size());
+        const T* h = staged({{m_a.Y.data(), m_a.Y.size()}, {m_a.hY.data(), m_a.hY.size()}});
+        Y.assign(h, h + m_a.Y.size() + m_a.hY.size());
     }
     void setPronyStates(const std::vector<double>& Y) override {
-        const size_t n = m_Y.size();
+        const size_t n = m_a.Y.size();
         const std::vector<T> y(Y.begin(), Y.end());
-        m_Y.upload(y.data(), n, m_stream);
-        m_hY.upload(y.data() + n, y.size() - n, m_stream);
+        m_a.Y.upload(y.data(), n, m_stream);
+        m_a.hY.upload(y.data() + n, y.size() - n, m_stream);
     }
     void setRelaxation(const std::vector<double>& A, const std::vector<double>& B) override {
         for (const auto& pass : m_passes) setCoefficients(pass->prony(), A, B);
@@ -363,8 +364,8 @@ public:
         m_targets[k].allocate(2 * n);
         T* h = m_targets[k].get();
         for (size_t j = 0; j < n; ++j) h[j] = static_cast<T>(tu[j]), h[n + j] = static_cast<T>(tv[j]);
-        check(cudaMemcpyAsync(m_tu.get(), h, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
-        check(cudaMemcpyAsync(m_tv.get(), h + n, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
+        check(cudaMemcpyAsync(m_a.tu.data(), h, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
+        check(cudaMemcpyAsync(m_a.tv.data(), h + n, n * sizeof(T), cudaMemcpyHostToDevice, m_stream), "cudaMemcpyAsync of the targets");
         check(cudaEventRecord(m_targetsCopied[k], m_stream), "cudaEventRecord");
     }
     void nodePass(const NodeParams<double>& p) override {
@@ -376,18 +377,19 @@ public:
         });
     }
     void internalForces(std::vector<double>& f) override {
-        gatherKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, m_f.get());
+        gatherKernel<T><<<grid(m_d.nNodes), m_block, 0, m_stream>>>(m_d, m_f.data());
         check(cudaGetLastError(), "the gather kernel launch");
-        const T* h = staged({{m_f.get(), m_f.size()}});
+        const T* h = staged({{m_f.data(), m_f.size()}});
         f.assign(h, h + m_f.size());
     }
     long firstBadStep() override {
         m_flag.allocate(1);
-        check(cudaMemcpyAsync(m_flag.get(), m_bad.get(), sizeof kNone, cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
+        check(cudaMemcpyAsync(m_flag.get(), m_a.bad.data(), sizeof kNone, cudaMemcpyDeviceToHost, m_stream), "cudaMemcpyAsync to the host");
         wait();
         return *m_flag.get() == kNone ? -1 : static_cast<long>(*m_flag.get());
     }
     void wait() override { check(cudaStreamSynchronize(m_stream), "the device step"); }
+    std::vector<std::string> layoutErrors(const StepSetup& s) override { return checkLayout(s, m_d, m_a); }
 
 private:
     static constexpr unsigned long long kNone = ~0ull;
@@ -406,127 +408,23 @@ private:
         wait();
         return m_stage.get();
     }
-    /// The arrays of h on the device, and m_d pointing at them.
+    /// The arrays of h on the device, and m_d pointing at them: each row of the table
+    /// (FASCIA_STEP_ARRAYS, StepLayout.h).
     void upload(const StepArraysHost<T>& h) {
-        const cudaStream_t s = m_stream;
-        m_tet.upload(h.tet, s);
-        m_slotStart.upload(h.slotStart, s);
-        m_slots.upload(h.slots, s);
-        m_tetSlot.upload(h.tetSlot, s);
-        m_hexSlot.upload(h.hexSlot, s);
-        m_triSlot.upload(h.triSlot, s);
-        m_quadSlot.upload(h.quadSlot, s);
-        m_sf.upload(h.sf, s);
-        m_dN.upload(h.dN, s);
-        m_vol.upload(h.vol, s);
-        m_ef.upload(h.ef, s);
-        m_eV.upload(h.eV, s);
-        m_eG.upload(h.eG, s);
-        m_eInvDetV.upload(h.eInvDetV, s);
-        m_ew4.upload(h.ew4, s);
-        m_ew6.upload(h.ew6, s);
-        m_ekk.upload(h.ekk, s);
-        m_elen0.upload(h.elen0, s);
-        m_hex.upload(h.hex, s);
-        m_hdN.upload(h.hdN, s);
-        m_hgC.upload(h.hgC, s);
-        m_hvol.upload(h.hvol, s);
-        m_hgK.upload(h.hgK, s);
-        m_hef.upload(h.hef, s);
-        m_fa.upload(h.fa, s);
-        m_fb.upload(h.fb, s);
-        m_hfa.upload(h.hfa, s);
-        m_hfb.upload(h.hfb, s);
-        m_Y.upload(h.Y, s);
-        m_hY.upload(h.hY, s);
-        m_ext.upload(h.ext, s);
-        m_loadF.upload(h.loadF, s);
-        m_tri.upload(h.tri, s);
-        m_quad.upload(h.quad, s);
-        m_triLoad.upload(h.triLoad, s);
-        m_quadLoad.upload(h.quadLoad, s);
-        m_triD.upload(h.triD, s);
-        m_quadD.upload(h.quadD, s);
-        m_tf.upload(h.tf, s);
-        m_qf.upload(h.qf, s);
-        m_mass.upload(h.mass, s);
-        m_invMass.upload(h.invMass, s);
-        m_u.upload(h.u, s);
-        m_v.upload(h.v, s);
-        m_hold.upload(h.hold, s);
-        m_tu.upload(h.tu, s);
-        m_tv.upload(h.tv, s);
-        m_du.upload(h.du, s);
-        m_react.upload(h.react, s);
-        m_f.upload(h.u, s);
-        m_bad.upload(&kNone, 1, s);
-        m_d.nTets = h.nTets;
-        m_d.nNodes = h.nNodes;
-        m_d.tet = m_tet.get();
-        m_d.dN = m_dN.get();
-        m_d.vol = m_vol.get();
-        m_d.ef = m_ef.get();
-        m_d.eV = m_eV.get();
-        m_d.eG = m_eG.get();
-        m_d.eInvDetV = m_eInvDetV.get();
-        m_d.ew4 = m_ew4.get();
-        m_d.ew6 = m_ew6.get();
-        m_d.ekk = m_ekk.get();
-        m_d.elen0 = m_elen0.get();
-        m_d.nHexes = h.nHexes;
-        m_d.hex = m_hex.get();
-        m_d.hdN = m_hdN.get();
-        m_d.hgC = m_hgC.get();
-        m_d.hvol = m_hvol.get();
-        m_d.hgK = m_hgK.get();
-        m_d.hef = m_hef.get();
-        m_d.fa = m_fa.get();
-        m_d.fb = m_fb.get();
-        m_d.hfa = m_hfa.get();
-        m_d.hfb = m_hfb.get();
-        m_d.Y = m_Y.get();
-        m_d.hY = m_hY.get();
-        m_d.slotStart = m_slotStart.get();
-        m_d.slots = m_slots.get();
-        m_d.tetSlot = m_tetSlot.get();  // (null when empty: the forces by element)
-        m_d.hexSlot = m_hexSlot.get();
-        m_d.triSlot = m_triSlot.get();
-        m_d.quadSlot = m_quadSlot.get();
-        m_d.sf = m_sf.get();
-        m_d.ext = m_ext.get();
-        m_d.nLoads = h.nLoads;
-        m_d.loadF = m_loadF.get();
-        m_d.nTris = h.nTris;
-        m_d.nQuads = h.nQuads;
-        m_d.tri = m_tri.get();
-        m_d.quad = m_quad.get();
-        m_d.triLoad = m_triLoad.get();
-        m_d.quadLoad = m_quadLoad.get();
-        m_d.triD = m_triD.get();
-        m_d.quadD = m_quadD.get();
-        m_d.tf = m_tf.get();
-        m_d.qf = m_qf.get();
-        m_d.mass = m_mass.get();
-        m_d.invMass = m_invMass.get();
-        m_d.hold = m_hold.get();
-        m_d.tu = m_tu.get();
-        m_d.tv = m_tv.get();
-        m_d.u = m_u.get();
-        m_d.v = m_v.get();
-        m_d.du = m_du.get();
-        m_d.react = m_react.get();
-        m_d.bad = m_bad.get();
+        static_cast<StepCounts&>(m_d) = h;
+        forEachStepArray<T>(
+            [&](const StepArrayInfo&, auto at, auto, const auto& from, auto& to) {
+                to.upload(from, m_stream);
+                m_d.*at = to.data();
+            },
+            h, m_a);
+        m_f.upload(h.u, m_stream);  // (the gathered forces of internalForces, 3 per node)
     }
     int m_block;
     bool m_central;
     cudaStream_t m_stream = nullptr;
-    DeviceArray<int> m_tet, m_hex, m_slotStart, m_tri, m_quad, m_triLoad, m_quadLoad;
-    DeviceArray<std::uint32_t> m_slots, m_tetSlot, m_hexSlot, m_triSlot, m_quadSlot;
-    DeviceArray<T> m_dN, m_vol, m_ef, m_hdN, m_hgC, m_hvol, m_hgK, m_hef, m_Y, m_hY, m_ext, m_loadF, m_triD, m_quadD, m_tf, m_qf, m_mass, m_invMass, m_u, m_v, m_f, m_tu, m_tv, m_du, m_react, m_sf;
-    DeviceArray<T> m_fa, m_fb, m_hfa, m_hfb;  ///< the fibre directions per element (empty without fibre arrays)
-    DeviceArray<T> m_eV, m_eG, m_eInvDetV, m_ew4, m_ew6, m_ekk, m_elen0;  ///< HEML's (StepSetup::Form::Edges)
-    DeviceArray<std::uint32_t> m_hold;
-    DeviceArray<unsigned long long> m_bad;
+    StepStores<T, DeviceArray> m_a;  ///< the arrays of m_d on the device, a buffer per row of the table
+    DeviceArray<T> m_f;              ///< the forces internalForces gathers
     PinnedArray<T> m_stage, m_targets[2];
     PinnedArray<unsigned long long> m_flag;
     cudaEvent_t m_targetsCopied[2] = {nullptr, nullptr};

@@ -8,10 +8,21 @@
 
 namespace fascia::cuda {
 
+/// The emulation's "device" copy of h: each array of the table (FASCIA_STEP_ARRAYS, StepLayout.h)
+/// copied, as CudaRunner.cu uploads them.
+template <class T>
+StepArraysHost<T> emulatedUpload(const StepArraysHost<T>& h) {
+    StepArraysHost<T> dev;
+    static_cast<StepCounts&>(dev) = h;
+    forEachStepArray<T>([](const StepArrayInfo&, auto, auto, const auto& from, auto& to) { to = from; }, h, dev);
+    return dev;
+}
+
 template <class T>
 class EmulatedRunner final : public StepRunner {
 public:
-    explicit EmulatedRunner(const StepSetup& s) : m_dev(toArrays<T>(s)), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
+    explicit EmulatedRunner(const StepSetup& s) : m_dev(emulatedUpload(toArrays<T>(s))), m_central(s.scheme == StepSetup::Scheme::CentralDifference) {
+        requireLayout(layoutErrors(s));
         forEachGroupLaw(s, [&](const auto& law, const StepSetup::Group& g) {
             m_passes.push_back(std::make_unique<LawPass<std::decay_t<decltype(law)>>>(s, g, law));
         });
@@ -20,7 +31,7 @@ public:
     void setState(const std::vector<double>& u, const std::vector<double>& v) override {
         m_dev.u.assign(u.begin(), u.end());
         m_dev.v.assign(v.begin(), v.end());
-        m_dev.bad = ~0ull;
+        m_dev.bad[0] = ~0ull;
     }
     void getState(std::vector<double>& u, std::vector<double>& v, std::vector<double>& r) override {
         u.assign(m_dev.u.begin(), m_dev.u.end());
@@ -38,7 +49,8 @@ public:
     }
     void getIncrements(std::vector<double>& du) override { du.assign(m_dev.du.begin(), m_dev.du.end()); }
     void setIncrements(const std::vector<double>& du) override { m_dev.du.assign(du.begin(), du.end()); }
-    long firstBadStep() override { return m_dev.bad == ~0ull ? -1 : static_cast<long>(m_dev.bad); }
+    long firstBadStep() override { return m_dev.bad[0] == ~0ull ? -1 : static_cast<long>(m_dev.bad[0]); }
+    std::vector<std::string> layoutErrors(const StepSetup& s) override { return checkLayout(s, m_dev.view(), m_dev); }
     void wait() override {}
     void elementPass() override {
         const StepArrays<T> d = m_dev.view();

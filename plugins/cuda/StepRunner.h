@@ -49,6 +49,10 @@ public:
     virtual long firstBadStep() = 0;
     /// Waits until every step launched so far is done.
     virtual void wait() = 0;
+    /// What in the arrays on the device (the emulation's "device" copy) does not match the table of
+    /// StepLayout.h for s, the runner's setup (checkLayout, StepSetup.h): none, which a runner checks
+    /// once it uploaded them (requireLayout).
+    virtual std::vector<std::string> layoutErrors(const StepSetup& s) = 0;
 };
 
 /// Which scalar the device step computes in.

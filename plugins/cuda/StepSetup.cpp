@@ -1,6 +1,7 @@
 #include "StepSetup.h"
 
 #include "DeviceLaws.h"
+#include "fascia/base/Error.h"
 #include "fascia/elements/FibreField.h"
 #include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Geometry.h"
@@ -475,6 +476,44 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     s.invMass = g.invMass;
     holdCodes(g, s);
     return s;
+}
+
+StepCounts stepCounts(const StepSetup& s) { return {s.nTets, s.nHexes, s.nNodes, s.nTris, s.nQuads, static_cast<int>(s.loads.size())}; }
+
+size_t stepLength(const StepArrayInfo& a, const StepSetup& s) {
+    using E = StepArrayInfo::Extent;
+    const size_t nT = static_cast<size_t>(s.nTets), nH = static_cast<size_t>(s.nHexes), n = static_cast<size_t>(s.nNodes);
+    const size_t nTri = static_cast<size_t>(s.nTris), nQ = static_cast<size_t>(s.nQuads), terms = static_cast<size_t>(s.pronyTerms());
+    size_t extent = 1;
+    switch (a.extent) {
+    case E::One: break;
+    case E::Tets: extent = nT; break;
+    case E::Hexes: extent = nH; break;
+    case E::Tris: extent = nTri; break;
+    case E::Quads: extent = nQ; break;
+    case E::Nodes: extent = n; break;
+    case E::NodesAndOne: extent = n + 1; break;
+    case E::NodeLoads: extent = n * s.loads.size(); break;
+    case E::Corners: extent = 4 * nT + 8 * nH + 3 * nTri + 4 * nQ; break;
+    case E::TetTerms: extent = terms * nT; break;
+    case E::HexTerms: extent = terms * nH; break;
+    case E::Targets: extent = s.targetAt.size(); break;
+    }
+    return a.width * extent;
+}
+
+bool inForceOrder(const StepArrayInfo& a, const StepSetup& s) {
+    if (a.need == StepArrayInfo::Need::ByElement) return !s.forcesInNodeOrder;
+    if (a.need == StepArrayInfo::Need::ByNode) return s.forcesInNodeOrder;
+    return true;
+}
+
+void requireLayout(const std::vector<std::string>& errors) {
+    if (errors.empty()) return;
+    std::string text;
+    for (const std::string& e : errors) text += "\n  " + e;
+    throw core::Error(core::ErrorKind::Internal, {},
+                      "[CudaStep] the device step's arrays do not match their table (fascia/cuda/StepLayout.h):" + text);
 }
 
 NodeParams<double> nodeParams(const core::MechanicalGroup& g, const StepSetup& s, double t, double dt, double kick) {

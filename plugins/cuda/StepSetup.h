@@ -11,6 +11,9 @@
 #include "fascia/sim/Mechanics.h"
 
 #include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 namespace fascia::viscoelastic {
@@ -97,152 +100,130 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
 /// The slot lists of s's elements (tet and hex as in StepArrays): s.slotStart (nNodes + 1) and s.slots.
 void buildSlots(StepSetup& s);
 
+/// A row of FASCIA_STEP_ARRAYS (StepLayout.h, where its columns are explained) as the host reads it.
+struct StepArrayInfo {
+    enum class Extent { One, Tets, Hexes, Tris, Quads, Nodes, NodesAndOne, NodeLoads, Corners, TetTerms, HexTerms, Targets };
+    enum class Need { All, Some, ByElement, ByNode };
+    enum class From { Setup, Zero, Unset };
+    const char* name;
+    int index;  ///< its row, from 0
+    Extent extent;
+    size_t width;
+    Need need;
+    From from;
+};
+
+/// The number of rows of FASCIA_STEP_ARRAYS.
+#define FASCIA_STEP_ROW(...) +1
+constexpr int kStepArrayRows = 0 FASCIA_STEP_ARRAYS(FASCIA_STEP_ROW);
+#undef FASCIA_STEP_ROW
+
+/// width times the extent of row a for s: its length where it has values.
+size_t stepLength(const StepArrayInfo& a, const StepSetup& s);
+
+/// Whether row a has values in the order of s's corner forces (false: ByElement in node order, ByNode by element).
+bool inForceOrder(const StepArrayInfo& a, const StepSetup& s);
+
+/// The counts of s's arrays.
+StepCounts stepCounts(const StepSetup& s);
+
+/// The StepSetup array a row of from=Setup copies (a member pointer), nullptr for the others.
+#define FASCIA_STEP_FROM_Setup(name) &StepSetup::name
+#define FASCIA_STEP_FROM_Zero(name) nullptr
+#define FASCIA_STEP_FROM_Unset(name) nullptr
+
+/// f(info, &StepArrays<T>::name, setup, stores.name...) for each row of FASCIA_STEP_ARRAYS, in its
+/// order: setup the StepSetup array it is copied from (a member pointer; nullptr when it is not),
+/// stores any number of StepStores (or structs with a member per row), the row's member of each.
+template <class T, class F, class... Stores>
+void forEachStepArray(F&& f, Stores&... stores) {
+    int index = 0;
+#define FASCIA_STEP_VISIT(type, name, extent, width, need, from)                                                               \
+    f(StepArrayInfo{#name, index++, StepArrayInfo::Extent::extent, width, StepArrayInfo::Need::need, StepArrayInfo::From::from}, \
+      &StepArrays<T>::name, FASCIA_STEP_FROM_##from(name), stores.name...);
+    FASCIA_STEP_ARRAYS(FASCIA_STEP_VISIT)
+#undef FASCIA_STEP_VISIT
+}
+
+/// A Store of each row's element type, by the row's name: StepArraysHost's vectors, the device
+/// buffers of CudaRunner.cu.
+template <class T, template <class...> class Store>
+struct StepStores {
+#define FASCIA_STEP_STORE(type, name, ...) Store<std::remove_const_t<type>> name;
+    FASCIA_STEP_ARRAYS(FASCIA_STEP_STORE)
+#undef FASCIA_STEP_STORE
+};
+
 /// The arrays of a setup in the scalar T, as host vectors (what an upload copies to the device;
 /// the emulation's "device" copy is a second set of them).
 template <class T>
-struct StepArraysHost {
-    int nTets = 0, nHexes = 0, nNodes = 0;
-    std::vector<int> tet, hex, slotStart;
-    std::vector<std::uint32_t> slots, tetSlot, hexSlot, triSlot, quadSlot;
-    std::vector<T> sf;  ///< the forces in node order (empty by element)
-    std::vector<T> eV, eG, eInvDetV, ew4, ew6, ekk, elen0;
-    std::vector<T> dN, vol, ef, hdN, hgC, hvol, hgK, hef, Y, hY, ext, loadF, mass, invMass, u, v, tu, tv, du, react;
-    std::vector<T> fa, fb, hfa, hfb;  ///< the fibre directions per element (empty without fibre arrays)
-    int nLoads = 0;
-    int nTris = 0, nQuads = 0;
-    std::vector<int> tri, quad, triLoad, quadLoad;
-    std::vector<T> triD, quadD, tf, qf;
-    std::vector<std::uint32_t> hold;
-    unsigned long long bad = ~0ull;
-
-    /// The StepArrays over these vectors.
+struct StepArraysHost : StepCounts, StepStores<T, std::vector> {
+    /// The StepArrays over these vectors (a null pointer for an empty one, as on the device).
     StepArrays<T> view() {
         StepArrays<T> d;
-        d.nTets = nTets;
-        d.nNodes = nNodes;
-        d.tet = tet.data();
-        d.dN = dN.data();
-        d.vol = vol.data();
-        d.ef = ef.data();
-        d.eV = eV.data();
-        d.eG = eG.data();
-        d.eInvDetV = eInvDetV.data();
-        d.ew4 = ew4.data();
-        d.ew6 = ew6.data();
-        d.ekk = ekk.data();
-        d.elen0 = elen0.data();
-        d.nHexes = nHexes;
-        d.hex = hex.data();
-        d.hdN = hdN.data();
-        d.hgC = hgC.data();
-        d.hvol = hvol.data();
-        d.hgK = hgK.data();
-        d.hef = hef.data();
-        d.fa = fa.data();
-        d.fb = fb.data();
-        d.hfa = hfa.data();
-        d.hfb = hfb.data();
-        d.Y = Y.data();
-        d.hY = hY.data();
-        d.slotStart = slotStart.data();
-        d.slots = slots.data();
-        d.ext = ext.data();
-        d.nLoads = nLoads;
-        d.nTris = nTris;
-        d.nQuads = nQuads;
-        d.tri = tri.data();
-        d.quad = quad.data();
-        d.triD = triD.data();
-        d.quadD = quadD.data();
-        d.triLoad = triLoad.data();
-        d.quadLoad = quadLoad.data();
-        d.tf = tf.data();
-        d.qf = qf.data();
-        d.tetSlot = tetSlot.empty() ? nullptr : tetSlot.data();
-        d.hexSlot = hexSlot.empty() ? nullptr : hexSlot.data();
-        d.triSlot = triSlot.empty() ? nullptr : triSlot.data();
-        d.quadSlot = quadSlot.empty() ? nullptr : quadSlot.data();
-        d.sf = sf.empty() ? nullptr : sf.data();
-        d.loadF = loadF.data();
-        d.mass = mass.data();
-        d.invMass = invMass.data();
-        d.hold = hold.data();
-        d.tu = tu.data();
-        d.tv = tv.data();
-        d.u = u.data();
-        d.v = v.data();
-        d.du = du.data();
-        d.react = react.data();
-        d.bad = &bad;
+        static_cast<StepCounts&>(d) = *this;
+        forEachStepArray<T>([&](const StepArrayInfo&, auto at, auto, auto& a) { d.*at = a.empty() ? nullptr : a.data(); }, *this);
         return d;
     }
 };
 
-/// The arrays of s converted to T, with u, v, the targets, du and the Prony states zero.
+/// The arrays of s converted to T, with u, v, the targets, du and the Prony states zero, each row
+/// as its columns say (StepLayout.h).
 template <class T>
 StepArraysHost<T> toArrays(const StepSetup& s) {
-    const auto conv = [](const std::vector<double>& a) { return std::vector<T>(a.begin(), a.end()); };
     StepArraysHost<T> h;
-    h.nTets = s.nTets;
-    h.nNodes = s.nNodes;
-    h.tet = s.tet;
-    h.slotStart = s.slotStart;
-    h.slots = s.slots;
-    h.dN = conv(s.dN);
-    h.vol = conv(s.vol);
-    const bool byNode = s.forcesInNodeOrder;  // (then the slots' records instead of the elements')
-    h.ef.assign(byNode ? 0 : 12 * static_cast<size_t>(s.nTets), T(0));
-    h.eV = conv(s.eV);
-    h.eG = conv(s.eG);
-    h.eInvDetV = conv(s.eInvDetV);
-    h.ew4 = conv(s.ew4);
-    h.ew6 = conv(s.ew6);
-    h.ekk = conv(s.ekk);
-    h.elen0 = conv(s.elen0);
-    h.nHexes = s.nHexes;
-    h.hex = s.hex;
-    h.hdN = conv(s.hdN);
-    h.hgC = conv(s.hgC);
-    h.hvol = conv(s.hvol);
-    h.hgK = conv(s.hgK);
-    h.hef.assign(byNode ? 0 : 24 * static_cast<size_t>(s.nHexes), T(0));
-    h.fa = conv(s.fa);
-    h.fb = conv(s.fb);
-    h.hfa = conv(s.hfa);
-    h.hfb = conv(s.hfb);
-    h.Y.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nTets), T(0));
-    h.hY.assign(6 * static_cast<size_t>(s.pronyTerms()) * static_cast<size_t>(s.nHexes), T(0));
-    h.ext = conv(s.ext);
-    h.loadF = conv(s.loadF);
-    h.nLoads = static_cast<int>(s.loads.size());
-    h.nTris = s.nTris;
-    h.nQuads = s.nQuads;
-    h.tri = s.tri;
-    h.quad = s.quad;
-    h.triLoad = s.triLoad;
-    h.quadLoad = s.quadLoad;
-    h.triD = conv(s.triD);
-    h.quadD = conv(s.quadD);
-    h.tf.assign(byNode ? 0 : 3 * static_cast<size_t>(s.nTris), T(0));
-    h.qf.assign(byNode ? 0 : 12 * static_cast<size_t>(s.nQuads), T(0));
-    if (byNode) {
-        h.tetSlot = s.tetSlot;
-        h.hexSlot = s.hexSlot;
-        h.triSlot = s.triSlot;
-        h.quadSlot = s.quadSlot;
-        h.sf.assign(3 * s.slots.size(), T(0));
-    }
-    h.mass = conv(s.mass);
-    h.invMass = conv(s.invMass);
-    h.u.assign(3 * static_cast<size_t>(s.nNodes), T(0));
-    h.v.assign(3 * static_cast<size_t>(s.nNodes), T(0));
-    h.hold = s.hold;
-    h.tu.assign(s.targetAt.size(), T(0));
-    h.tv.assign(s.targetAt.size(), T(0));
-    h.du.assign(3 * static_cast<size_t>(s.nNodes), T(0));
-    h.react.assign(3 * static_cast<size_t>(s.nNodes), T(0));
+    static_cast<StepCounts&>(h) = stepCounts(s);
+    forEachStepArray<T>(
+        [&](const StepArrayInfo& a, auto, auto setup, auto& to) {
+            if (!inForceOrder(a, s)) return;  // (the forces of the other order: none)
+            if constexpr (std::is_member_object_pointer_v<decltype(setup)>) {
+                to.assign((s.*setup).begin(), (s.*setup).end());
+            } else {
+                typename std::decay_t<decltype(to)>::value_type x{};
+                if (a.from == StepArrayInfo::From::Unset) std::memset(&x, 0xff, sizeof x);
+                to.assign(stepLength(a, s), x);
+            }
+        },
+        h);
     return h;
 }
+
+/// What in the arrays `dev` (StepArraysHost, or CudaRunner.cu's device buffers: a .size() and a
+/// .data() per row) and in d pointing at them does not match the table for s, a line per row (the
+/// row's name first): a length that is not the one toArrays gives (an array the upload left out),
+/// a pointer that is not its array's (null for no values), an array of the setup whose length is
+/// not the one the table gives; and counts that are not s's. Empty when they match.
+template <class T, class Stores>
+std::vector<std::string> checkLayout(const StepSetup& s, const StepArrays<T>& d, const Stores& dev) {
+    std::vector<std::string> out;
+    const StepCounts c = stepCounts(s), &dc = d;
+    if (dc.nTets != c.nTets || dc.nHexes != c.nHexes || dc.nNodes != c.nNodes || dc.nTris != c.nTris || dc.nQuads != c.nQuads ||
+        dc.nLoads != c.nLoads)
+        out.push_back("the counts are not the setup's");
+    forEachStepArray<T>(
+        [&](const StepArrayInfo& a, auto at, auto setup, const auto& held) {
+            const std::string name = a.name;
+            const size_t full = stepLength(a, s);
+            size_t want = inForceOrder(a, s) ? full : 0;
+            if constexpr (std::is_member_object_pointer_v<decltype(setup)>) {
+                const size_t given = (s.*setup).size();
+                if (given != full && !(given == 0 && a.need == StepArrayInfo::Need::Some))
+                    out.push_back(name + ": the setup gives " + std::to_string(given) + " values, the table " + std::to_string(full));
+                if (want > 0) want = given;
+            }
+            const size_t n = held.size();
+            const void* p = d.*at;
+            if (n != want) out.push_back(name + ": " + std::to_string(n) + " values on the device, " + std::to_string(want) + " expected");
+            else if (p != (n > 0 ? static_cast<const void*>(held.data()) : nullptr))
+                out.push_back(name + (p ? ": its pointer is not its array's" : ": no pointer to its " + std::to_string(n) + " values"));
+        },
+        dev);
+    return out;
+}
+
+/// Throws an internal error listing `errors` (checkLayout's) unless there are none: a runner's
+/// check of its arrays once uploaded.
+void requireLayout(const std::vector<std::string>& errors);
 
 /// Tracks SemiImplicitEuler's velocity kick across steps as SemiImplicitEuler::step does: dt/2 on
 /// the first step with halfStepStart, then (dt_old + dt)/2 (dt without halfStepStart).

@@ -89,62 +89,96 @@ namespace fascia::cuda {
 ///   bad[0]                       the first step whose node pass left a u or v that is not finite
 ///                                (all ones: none; the state stays on the device, so the host reads
 ///                                this one number to check it: CudaStep's checkEvery)
-template <class T>
-struct StepArrays {
-    int nTets = 0, nNodes = 0;
-    const int* tet = nullptr;
-    const T* dN = nullptr;
-    const T* vol = nullptr;
-    T* ef = nullptr;
-    const T* eV = nullptr;
-    const T* eG = nullptr;
-    const T* eInvDetV = nullptr;
-    const T* ew4 = nullptr;
-    const T* ew6 = nullptr;
-    const T* ekk = nullptr;
-    const T* elen0 = nullptr;
-    int nHexes = 0;
-    const int* hex = nullptr;
-    const T* hdN = nullptr;
-    const T* hgC = nullptr;
-    const T* hvol = nullptr;
-    const T* hgK = nullptr;
-    T* hef = nullptr;
-    const T* fa = nullptr;
-    const T* fb = nullptr;
-    const T* hfa = nullptr;
-    const T* hfb = nullptr;
-    T* Y = nullptr;
-    T* hY = nullptr;
+/// (StepArrays below: the pointers of the rows of FASCIA_STEP_ARRAYS, and the counts of StepCounts.)
+
+/// The counts the arrays' lengths are made of (and the kernels' loops run to).
+struct StepCounts {
+    int nTets = 0, nHexes = 0, nNodes = 0;
     int nTris = 0, nQuads = 0;
-    const int* tri = nullptr;
-    const int* quad = nullptr;
-    const T* triD = nullptr;
-    const T* quadD = nullptr;
-    const int* triLoad = nullptr;
-    const int* quadLoad = nullptr;
-    T* tf = nullptr;
-    T* qf = nullptr;
-    const std::uint32_t* tetSlot = nullptr;
-    const std::uint32_t* hexSlot = nullptr;
-    const std::uint32_t* triSlot = nullptr;
-    const std::uint32_t* quadSlot = nullptr;
-    T* sf = nullptr;
-    const int* slotStart = nullptr;
-    const std::uint32_t* slots = nullptr;
-    const T* ext = nullptr;
     int nLoads = 0;
-    const T* loadF = nullptr;
-    const T* mass = nullptr;
-    const T* invMass = nullptr;
-    const std::uint32_t* hold = nullptr;
-    const T* tu = nullptr;
-    const T* tv = nullptr;
-    T* u = nullptr;
-    T* v = nullptr;
-    T* du = nullptr;
-    T* react = nullptr;
-    unsigned long long* bad = nullptr;
+};
+
+/// The arrays above, each declared once, here: one row per array,
+///   X(type, name, extent, width, need, from)
+///   type   the element as the kernels see it (const: they only read it)
+///   extent, width  its length: width values per tetrahedron (Tets), hexahedron (Hexes), triangle or
+///          quadrilateral under pressure (Tris, Quads), node (Nodes), node and curved load
+///          (NodeLoads: nNodes nLoads), slot (Corners: 4 nTets + 8 nHexes + 3 nTris + 4 nQuads),
+///          Prony term and element (TetTerms, HexTerms: StepSetup::pronyTerms), target of a
+///          PrescribedDisplacement (Targets); NodesAndOne: nNodes + 1 values; One: one value
+///   need   All: always that length; Some: that length or none, as the setup gives it (the form,
+///          the laws, the fibre arrays, see above); ByElement, ByNode: that length with the corner
+///          forces by element (resp. in node order, CudaStep forceOrder="node"), else none
+///   from   Setup: StepSetup's array of the same name, in the element type; Zero: zeros; Unset:
+///          every bit set (bad: no bad step yet)
+/// The rows declare StepArrays' pointers (below), StepArraysHost's vectors and CudaRunner.cu's
+/// device buffers (StepStores, StepSetup.h), and what fills and checks them visits them
+/// (forEachStepArray: toArrays, view, the uploads, checkLayout), so that an array is added by a row
+/// here (and the StepSetup code that fills it, and the kernels that read it). An X-macro rather than
+/// a constexpr table of member pointers: StepArrays, what the kernels take, has to be a plain struct
+/// of named pointers, and member pointers can only point at members declared elsewhere (here, in
+/// StepArraysHost and CudaRunner.cu again: the copies these rows replace); the rows also give each
+/// array its name as text (#name, for checkLayout's messages), and are plain text to nvcc's device
+/// pass. A row names the scalar T: it expands where T is the step's scalar.
+#define FASCIA_STEP_ARRAYS(X)                             \
+    X(const int, tet, Tets, 4, All, Setup)                \
+    X(const T, dN, Tets, 9, Some, Setup)                  \
+    X(const T, vol, Tets, 1, All, Setup)                  \
+    X(T, ef, Tets, 12, ByElement, Zero)                   \
+    X(const T, eV, Tets, 9, Some, Setup)                  \
+    X(const T, eG, Tets, 6, Some, Setup)                  \
+    X(const T, eInvDetV, Tets, 1, Some, Setup)            \
+    X(const T, ew4, Tets, 3, Some, Setup)                 \
+    X(const T, ew6, Tets, 3, Some, Setup)                 \
+    X(const T, ekk, Tets, 6, Some, Setup)                 \
+    X(const T, elen0, Tets, 6, Some, Setup)               \
+    X(const int, hex, Hexes, 8, All, Setup)               \
+    X(const T, hdN, Hexes, 24, All, Setup)                \
+    X(const T, hgC, Hexes, 12, All, Setup)                \
+    X(const T, hvol, Hexes, 1, All, Setup)                \
+    X(const T, hgK, Hexes, 1, All, Setup)                 \
+    X(T, hef, Hexes, 24, ByElement, Zero)                 \
+    X(const T, fa, Tets, 3, Some, Setup)                  \
+    X(const T, fb, Tets, 3, Some, Setup)                  \
+    X(const T, hfa, Hexes, 3, Some, Setup)                \
+    X(const T, hfb, Hexes, 3, Some, Setup)                \
+    X(T, Y, TetTerms, 6, All, Zero)                       \
+    X(T, hY, HexTerms, 6, All, Zero)                      \
+    X(const int, tri, Tris, 3, All, Setup)                \
+    X(const int, quad, Quads, 4, All, Setup)              \
+    X(const T, triD, Tris, 6, All, Setup)                 \
+    X(const T, quadD, Quads, 9, All, Setup)               \
+    X(const int, triLoad, Tris, 1, All, Setup)            \
+    X(const int, quadLoad, Quads, 1, All, Setup)          \
+    X(T, tf, Tris, 3, ByElement, Zero)                    \
+    X(T, qf, Quads, 12, ByElement, Zero)                  \
+    X(const std::uint32_t, tetSlot, Tets, 4, ByNode, Setup)   \
+    X(const std::uint32_t, hexSlot, Hexes, 8, ByNode, Setup)  \
+    X(const std::uint32_t, triSlot, Tris, 3, ByNode, Setup)   \
+    X(const std::uint32_t, quadSlot, Quads, 4, ByNode, Setup) \
+    X(T, sf, Corners, 3, ByNode, Zero)                    \
+    X(const int, slotStart, NodesAndOne, 1, All, Setup)   \
+    X(const std::uint32_t, slots, Corners, 1, All, Setup) \
+    X(const T, ext, Nodes, 3, All, Setup)                 \
+    X(const T, loadF, NodeLoads, 3, All, Setup)           \
+    X(const T, mass, Nodes, 1, All, Setup)                \
+    X(const T, invMass, Nodes, 1, All, Setup)             \
+    X(const std::uint32_t, hold, Nodes, 3, All, Setup)    \
+    X(const T, tu, Targets, 1, All, Zero)                 \
+    X(const T, tv, Targets, 1, All, Zero)                 \
+    X(T, u, Nodes, 3, All, Zero)                          \
+    X(T, v, Nodes, 3, All, Zero)                          \
+    X(T, du, Nodes, 3, All, Zero)                         \
+    X(T, react, Nodes, 3, All, Zero)                      \
+    X(unsigned long long, bad, One, 1, All, Unset)
+
+/// The arrays of one step, scalar T (float or double), as documented above: a pointer per row of
+/// FASCIA_STEP_ARRAYS (null for an array of no values), and the counts.
+template <class T>
+struct StepArrays : StepCounts {
+#define FASCIA_STEP_POINTER(type, name, ...) type* name = nullptr;
+    FASCIA_STEP_ARRAYS(FASCIA_STEP_POINTER)
+#undef FASCIA_STEP_POINTER
 };
 
 /// The most Prony series (one per part of the response, or one for both) and terms per series the
