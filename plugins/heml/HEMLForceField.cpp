@@ -1,14 +1,15 @@
+// HEMLForceField: set-up (init), the staged forces, the viscous history's state IO, the energy, the
+// stable time step and the cell data. The precomputation is in HEMLElements.cpp, the element loop
+// in HEMLKernel.h (instantiated in HEMLKernelDouble.cpp, HEMLKernelFloat.cpp).
 #include "fascia/heml/HEMLForceField.h"
-#include "HEMLKernel.h"
+#include "HEMLData.h"
 
 #include "fascia/base/StateIO.h"
-#include "fascia/elements/NodeOrder.h"
+#include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Errors.h"
 #include "fascia/elements/FibreField.h"
 #include "fascia/elements/Geometry.h"
-#include "fascia/elements/LawDispatch.h"
 #include "fascia/elements/Tensor3.h"
-#include "fascia/materials/Laws.h"
 #include "fascia/materials/RelaxationSplit.h"
 #include "fascia/scene/Node.h"
 #include "fascia/viscoelastic/ViscoelasticProny.h"
@@ -18,69 +19,27 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
-#include <sstream>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace fascia::heml {
 
 using materials::BaseMaterial;
+using elements::edgeA;
+using elements::edgeB;
+using elements::traceDk;
 
 namespace {
-
-// T: the element scalar type, double or float (precision="mixed")
-template <class T, class Law, bool Forces, bool Visco>
-double runLaw(HEMLData& d, size_t b, const BlockRun& x) {
-    const BaseMaterial* m = d.materials[size_t(d.blocks[b].material)];
-    if constexpr (std::is_same_v<Law, elements::GenericLaw>)
-        return runBlock<T, GenericEval, Forces, Visco>(d, b, GenericEval{m, m->uses()}, x);
-    else
-        return runBlock<T, LawEval<Law>, Forces, Visco>(d, b, {elements::lawOf<Law>(m)}, x);
-}
-
-template <bool Forces, bool Visco>
-double runSpring(HEMLData& d, size_t b, const BlockRun& x) {
-    return d.mixed ? runBlock<float, SpringEval, Forces, Visco>(d, b, SpringEval{}, x)
-                   : runBlock<double, SpringEval, Forces, Visco>(d, b, SpringEval{}, x);
-}
-
-} // namespace
-
-/// The element loops of one material: with forces and viscosity, with forces, energy alone.
-struct HEMLForceField::BlockFns {
-    using Fn = double (*)(HEMLData&, size_t, const BlockRun&);
-    Fn forcesVisco = nullptr, forces = nullptr, energy = nullptr;
-    bool inlined = true;
-};
-
-namespace {
-
-/// The loops of a material from the one list of built-in laws (elements/LawDispatch.h), with the
-/// element math in T.
-template <class T>
-HEMLForceField::BlockFns loopsFor(const BaseMaterial* m) {
-    return elements::selectForLaw(m, [](auto tag) {
-        using Law = typename decltype(tag)::type;
-        return HEMLForceField::BlockFns{&runLaw<T, Law, true, true>, &runLaw<T, Law, true, false>,
-                                        &runLaw<T, Law, false, false>, !std::is_same_v<Law, elements::GenericLaw>};
-    });
-}
 
 // one block with the loop of its material (or the mass-spring loop)
 template <bool Forces, bool Visco>
-double runOne(HEMLData& d, size_t b, const std::vector<HEMLForceField::BlockFns>& fns, const BlockRun& x) {
-    if (d.massSpring) return runSpring<Forces, Visco>(d, b, x);
-    const HEMLForceField::BlockFns& f = fns[size_t(d.blocks[b].material)];
+double runOne(Impl& d, size_t b, const BlockRun& x) {
+    const Impl::Loops& f = d.loops[d.massSpring ? 0 : size_t(d.blocks[b].material)];
     return (Forces ? (Visco ? f.forcesVisco : f.forces) : f.energy)(d, b, x);
 }
 
 } // namespace
 
 HEMLForceField::HEMLForceField() = default;
-HEMLForceField::~HEMLForceField() { core::waitForLateTasks(); }  // (a block's late run may still read m_data)
+HEMLForceField::~HEMLForceField() { core::waitForLateTasks(); }  // (a block's late run may still read m_impl)
 
 // ---------------------------------------------------------------------------------------------
 // set-up
@@ -100,8 +59,8 @@ std::vector<core::Component*> HEMLForceField::dependencies() const {
 
 void HEMLForceField::init() {
     core::waitForLateTasks();
-    m_data = std::make_unique<HEMLData>();
-    HEMLData& d = *m_data;
+    m_impl = std::make_unique<Impl>();
+    Impl& d = *m_impl;
     d.J0 = m_J0.get();
     d.mixed = m_precision.get() == "mixed";
 
@@ -162,217 +121,11 @@ void HEMLForceField::init() {
     precompute(rest, elementMaterial);
 }
 
-namespace {
-
-/// The node rows of the blocks (compact rows: each block's distinct nodes, in internal order; the
-/// elements' nodes rewritten to them) and the per-node lists of rows for the ordered sum.
-void buildNodeRows(HEMLData& d) {
-    d.rows = elements::CompactBlockBuffers{};
-    for (const Block& b : d.blocks) {
-        const size_t count = b.end - b.begin;
-        d.rows.addBlock({{d.node[0].data() + b.begin, count}, {d.node[1].data() + b.begin, count},
-                         {d.node[2].data() + b.begin, count}, {d.node[3].data() + b.begin, count}});
-    }
-    d.rows.finish(d.nodeOf);
-    d.scratch.reserve(d.rows.maxRows(), d.rows.maxRows());
-    d.blockEnergy.assign(d.blocks.size(), 0.0);
-}
-
-/// The viscoelastic state of eq. (18)-(20), one value per slot, term and link coefficient.
-void setUpVisco(HEMLData& d, const viscoelastic::ViscoelasticProny* visco, size_t S) {
-    // viscoelastic state
-    d.nTerms = 0;
-    d.Yprev.clear();
-    d.Ycur.clear();
-    d.clock = viscoelastic::HistoryClock{};
-    d.restShift.assign(d.materials.size(), 0.0);
-    if (visco) {
-        d.nTerms = int(visco->termCount());
-        d.relaxIso = visco->relaxesIsochoric();
-        d.relaxVol = visco->relaxesVolumetric();
-        // one part relaxes: move each material's rest-stress term s ln J out of the isochoric part
-        if (d.relaxIso != d.relaxVol)
-            for (size_t m = 0; m < d.materials.size(); ++m) d.restShift[m] = materials::relaxationSplit(*d.materials[m], d.J0).shift;
-        d.Yprev.assign(size_t(d.nTerms * 6), DVec(S, 0.0));
-        d.Ycur = d.Yprev;
-    }
-}
-
-/// precision="mixed": the element arrays rounded to float, the double ones freed (docs/design.md,
-/// section 3, "two precisions of the same loop": the element data the loop streams is halved,
-/// 80 -> 48 bytes per element with the node indices).
-void roundToFloat(HEMLData& d) {
-    d.elf.zip(d.el, [](FVec& f, const DVec& v) { f.assign(v.begin(), v.end()); });
-    d.el = ElementArrays<double>{};
-}
-
-/// The distinct materials of the elements (d.materials, in first use order) and each element's
-/// index among them (-1 in mass-spring mode).
-std::vector<int> distinctMaterials(HEMLData& d, const std::vector<BaseMaterial*>& elementMaterial) {
-    const size_t ne = d.nElements;
-    std::vector<int> matIndex(ne, -1);
-    d.materials.clear();
-    if (!d.massSpring) {
-        std::map<const BaseMaterial*, int> idx;
-        for (size_t e = 0; e < ne; ++e) {
-            auto it = idx.find(elementMaterial[e]);
-            if (it == idx.end()) {
-                it = idx.emplace(elementMaterial[e], int(d.materials.size())).first;
-                d.materials.push_back(elementMaterial[e]);
-            }
-            matIndex[e] = it->second;
-        }
-    }
-    return matIndex;
-}
-
-/// The element order: by material, then by lowest internal node (locality of the block buffers).
-std::vector<int> elementOrder(const HEMLData& d, const Tetrahedra& tets, const std::vector<int>& matIndex) {
-    const size_t ne = tets.size();
-    std::vector<int> order(ne);
-    std::iota(order.begin(), order.end(), 0);
-    std::vector<int> minNode(ne);
-    for (size_t e = 0; e < ne; ++e) {
-        int m = d.internalOf[tets[e][0]];
-        for (int a = 1; a < 4; ++a) m = std::min(m, d.internalOf[tets[e][a]]);
-        minNode[e] = m;
-    }
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-        if (matIndex[a] != matIndex[b]) return matIndex[a] < matIndex[b];
-        return minNode[a] < minNode[b];
-    });
-    return order;
-}
-
-/// The blocks: per material segment of the order, near kBlockSize elements each, padded to kLanes
-/// (d.blocks, d.elementOf, d.nSlots).
-void buildBlocks(HEMLData& d, const std::vector<int>& order, const std::vector<int>& matIndex) {
-    const size_t ne = order.size();
-    d.blocks.clear();
-    d.elementOf.clear();
-    for (size_t s = 0; s < ne;) {
-        size_t t = s;
-        while (t < ne && matIndex[order[t]] == matIndex[order[s]]) ++t;
-        const size_t count = t - s, nb = (count + kBlockSize - 1) / kBlockSize;
-        for (size_t k = 0; k < nb; ++k) {
-            const size_t a = s + count * k / nb, b = s + count * (k + 1) / nb;
-            Block blk;
-            blk.begin = d.elementOf.size();
-            for (size_t i = a; i < b; ++i) d.elementOf.push_back(order[i]);
-            while ((d.elementOf.size() - blk.begin) % kLanes) d.elementOf.push_back(-1 - order[b - 1]);  // padding
-            blk.end = d.elementOf.size();
-            blk.material = matIndex[order[s]];
-            d.blocks.push_back(blk);
-        }
-        s = t;
-    }
-    d.nSlots = d.elementOf.size();
-}
-
-/// The per-slot arrays, zeroed: the node indices, and the element data the mode needs (G for a
-/// material, spring stiffness and rest length in mass-spring mode, the fibre rows when used).
-void allocateSlots(HEMLData& d, bool anyI4, bool anyI6) {
-    const size_t S = d.nSlots;
-    for (auto& v : d.node) v.assign(S, 0);
-    ElementArrays<double>& el = d.el;
-    el.vol.assign(S, 0.0);
-    el.invDetV.assign(S, 0.0);
-    for (int k = 0; k < 6; ++k) {
-        el.G[k].assign(d.massSpring ? 0 : S, 0.0);
-        el.kk[k].assign(d.massSpring ? S : 0, 0.0);
-        el.len0[k].assign(d.massSpring ? S : 0, 0.0);
-    }
-    for (int k = 0; k < 3; ++k) {
-        el.w4[k].assign(anyI4 ? S : 0, 0.0);
-        el.w6[k].assign(anyI6 ? S : 0, 0.0);
-    }
-}
-
-} // namespace
-
-void HEMLForceField::precompute(const Positions& rest, const std::vector<BaseMaterial*>& elementMaterial) {
-    HEMLData& d = *m_data;
-    const size_t n = rest.size(), ne = m_tets.size();
-    d.nNodes = n;
-    d.nElements = ne;
-
-    // node order
-    // reverse Cuthill-McKee (docs/performance.md, lesson 5): internal -> input node
-    d.nodeOf = elements::reverseCuthillMcKee(n, {{m_tets.empty() ? nullptr : m_tets.front().data(), m_tets.size(), 4}});
-    d.internalOf.assign(n, 0);
-    for (size_t p = 0; p < n; ++p) d.internalOf[d.nodeOf[p]] = int(p);
-
-    {
-        const std::vector<int> matIndex = distinctMaterials(d, elementMaterial);
-        m_fns.clear();
-        for (auto* m : d.materials) m_fns.push_back(d.mixed ? loopsFor<float>(m) : loopsFor<double>(m));
-        buildBlocks(d, elementOrder(d, m_tets, matIndex), matIndex);
-    }  // (the ordering scratch freed before the per-slot arrays come: 12 bytes an element at the peak)
-    d.slotOf.assign(ne, -1);
-
-    // per-slot data (computed in double; precision="mixed" rounds it to float below)
-    allocateSlots(d, !m_dirA.empty(), !m_dirB.empty());
-    fillSlots(rest);
-
-    d.totalVolume = 0;
-    for (size_t s = 0; s < d.nSlots; ++s) d.totalVolume += d.el.vol[s];
-    if (d.mixed) roundToFloat(d);
-
-    buildNodeRows(d);
-    setUpVisco(d, m_visco, d.nSlots);
-}
-
-void HEMLForceField::fillSlots(const Positions& rest) {
-    HEMLData& d = *m_data;
-    ElementArrays<double>& el = d.el;
-    const bool anyI4 = !m_dirA.empty(), anyI6 = !m_dirB.empty();
-    // edges shared between tetrahedra (mass-spring mode splits k between them)
-    const elements::EdgeShares shares(d.massSpring ? m_tets : Tetrahedra{});
-
-    for (size_t slot = 0; slot < d.nSlots; ++slot) {
-        const bool pad = d.elementOf[slot] < 0;
-        const int e = pad ? -1 - d.elementOf[slot] : d.elementOf[slot];
-        if (!pad) d.slotOf[e] = int(slot);
-        const auto& t = m_tets[e];
-        for (int a = 0; a < 4; ++a) d.node[a][slot] = d.internalOf[t[a]];
-        // Algorithm 1: V, V^-1, Vol, C_k, vtr, Mtr
-        const elements::EdgeRest er = elements::edgeRest(rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]]);
-        const double det = er.det;
-        double maxEdge = 0;
-        for (int k = 0; k < 6; ++k) maxEdge = std::max(maxEdge, (rest[t[edgeB(k)]] - rest[t[edgeA(k)]]).norm());
-        if (!(std::abs(det) > 1e-12 * maxEdge * maxEdge * maxEdge))
-            fail("tetrahedron " + std::to_string(e) + " (nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
-                 std::to_string(t[2]) + " " + std::to_string(t[3]) + ") is degenerate: zero volume at rest");
-        el.vol[slot] = pad ? 0.0 : std::abs(det) / 6.0;
-        el.invDetV[slot] = 1.0 / det;
-        if (d.massSpring) {
-            for (int k = 0; k < 6; ++k) {
-                const int a = t[edgeA(k)], b = t[edgeB(k)];
-                el.len0[k][slot] = (rest[b] - rest[a]).norm();
-                el.kk[k][slot] = pad ? 0.0 : m_stiffness.get() / shares.count(a, b);
-            }
-            continue;
-        }
-        // Algorithm 1 (Appendix A, C): C_k = V^-T D_k V^-1 enter through G = V^-1 V^-T only
-        // (vtr_k = tr(D_k G), Mtr_ij = tr(D_i G D_j G), a0.C_k a0 = (V^-1 a0).D_k (V^-1 a0))
-        const Mat3& Vi = er.Vi;
-        for (int q = 0; q < 6; ++q) el.G[q][slot] = er.G[q];
-        if (anyI4) {
-            const Vec3 w = m_dirA[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirA[e]);
-            for (int q = 0; q < 3; ++q) el.w4[q][slot] = w[q];
-        }
-        if (anyI6) {
-            const Vec3 w = m_dirB[e].isZero() ? Vec3::Zero() : Vec3(Vi * m_dirB[e]);
-            for (int q = 0; q < 3; ++q) el.w6[q][slot] = w[q];
-        }
-    }
-}
-
 void HEMLForceField::checkState(const core::BaseMechanicalState& state) const {
-    if (!m_data) fail("used before init()");
-    if (state.size() != m_data->nNodes)
+    if (!m_impl) fail("used before init()");
+    if (state.size() != m_impl->nNodes)
         elements::runtimeError(*this, "the state '" + state.name() + "' has " + std::to_string(state.size()) +
-                                          " nodes but the force field was set up for " + std::to_string(m_data->nNodes));
+                                          " nodes but the force field was set up for " + std::to_string(m_impl->nNodes));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -383,8 +136,8 @@ bool HEMLForceField::worstElement(const core::BaseMechanicalState& state, core::
 }
 
 void HEMLForceField::saveState(core::StateWriter& out) const {
-    if (!m_data || m_data->nTerms == 0) return;
-    const HEMLData& d = *m_data;
+    if (!m_impl || m_impl->nTerms == 0) return;
+    const Impl& d = *m_impl;
     out.put("arrays", long(d.Yprev.size()));
     for (size_t k = 0; k < d.Yprev.size(); ++k) {
         out.put("Yprev", d.Yprev[k].data(), d.Yprev[k].size());
@@ -394,8 +147,8 @@ void HEMLForceField::saveState(core::StateWriter& out) const {
 }
 
 void HEMLForceField::restoreState(core::StateReader& in) {
-    if (!m_data || m_data->nTerms == 0) return;
-    HEMLData& d = *m_data;
+    if (!m_impl || m_impl->nTerms == 0) return;
+    Impl& d = *m_impl;
     const long n = in.getLong("arrays");
     if (n != long(d.Yprev.size()))
         in.fail("[" + path() + "] the checkpoint has " + std::to_string(n) + " viscous state arrays, this force field " +
@@ -408,7 +161,7 @@ void HEMLForceField::restoreState(core::StateReader& in) {
 }
 
 void HEMLForceField::adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) {
-    HEMLData& d = *m_data;
+    Impl& d = *m_impl;
     const size_t n = d.nElements, terms = static_cast<size_t>(d.nTerms);
     if (Yt.size() != 6 * terms * n || !Yh.empty())
         elements::runtimeError(*this, "a step backend handed back " + std::to_string(Yt.size() + Yh.size()) + " Prony states for its " +
@@ -420,16 +173,15 @@ void HEMLForceField::adoptHistory(const std::vector<double>& Yt, const std::vect
     d.clock = clock;
 }
 
-void HEMLForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
+long HEMLForceField::forceNodes(const core::BaseMechanicalState& state, const Positions& f) const {
     checkState(state);
     if (f.size() != state.size()) elements::runtimeError(*this, "force array of the wrong size");
-    beginForces(state, t);
-    evaluate(m_evalX, f.data()->data());
+    return static_cast<long>(m_impl->nNodes);
 }
 
 void HEMLForceField::beginForces(core::BaseMechanicalState& state, double t) {
     checkState(state);
-    HEMLData& d = *m_data;
+    Impl& d = *m_impl;
     if (d.nTerms > 0) {
         // a new time advances the history, over the time elapsed since the last evaluation
         // (viscoelastic/HistoryClock.h)
@@ -438,11 +190,11 @@ void HEMLForceField::beginForces(core::BaseMechanicalState& state, double t) {
         if (d.clock.beginEvaluation(t, m_visco->dt())) std::swap(d.Yprev, d.Ycur);
         viscoelastic::stepCoefficients(*m_visco, d.clock.elapsed(), m_visco->dt(), d.A, d.B);
     }
-    m_evalX = core::flat(state.x());
+    d.evalX = core::flat(state.x());
 }
 
 void HEMLForceField::addForceRaw(const double* x, double* fout) {
-    HEMLData& d = *m_data;
+    Impl& d = *m_impl;
     if (d.nTerms > 0) {
         if (!m_visco->hasCoefficients())
             elements::runtimeError(*this, "ViscoelasticProny '" + m_visco->name() + "' has no time step yet");
@@ -451,45 +203,39 @@ void HEMLForceField::addForceRaw(const double* x, double* fout) {
             d.B = m_visco->B();
         }
     }
-    evaluate(x, fout);
+    // one job of the step team: positions in internal order, the element blocks (each into its own
+    // node rows), then per node the sum of its rows in block order (deterministic for any thread count)
+    d.evalX = x;
+    core::runThreadedForces(*this, fout, static_cast<long>(d.nNodes));
 }
 
-void HEMLForceField::evaluate(const double* x, double* fout) {
-    // one parallel region: positions in internal order, the element blocks (each into its own node
-    // rows), then per node the sum of its rows in block order (deterministic for any thread count)
-    m_evalX = x;
-    core::runThreadedForces(*this, fout, static_cast<long>(m_data->nNodes));
-}
+long HEMLForceField::prepareNodes() const { return m_impl->rows.directGather() ? 0 : static_cast<long>(m_impl->nNodes); }
 
-long HEMLForceField::prepareNodes() const { return m_data->rows.directGather() ? 0 : static_cast<long>(m_data->nNodes); }
-
-void HEMLForceField::prepareRange(long lo, long hi) { m_data->rows.positionsRange(m_evalX, lo, hi); }
-
-long HEMLForceField::forceBlocks() const { return static_cast<long>(m_data->blocks.size()); }
+void HEMLForceField::prepareRange(long lo, long hi) { m_impl->rows.positionsRange(m_impl->evalX, lo, hi); }
 
 // (not when the blocks read the state's positions in place, below about 21,800 nodes: a program may
 // reassign the state's x between steps, and a late run would read the freed array)
-bool HEMLForceField::rerunnableBlocks() const { return m_data->nTerms == 0 && !m_data->rows.directGather(); }
+bool HEMLForceField::rerunnableBlocks() const { return m_impl->nTerms == 0 && !m_impl->rows.directGather(); }
 
 void HEMLForceField::runForceBlock(long bl, int thread) {
     // the forces into the thread's own rows, the buffer and the energy written only by the run that
     // claims the block (a block taken over runs twice: core/StepTeam.h); the viscous states are
     // written in place (Ycur), so viscous blocks are not rerunnable (nor those of small meshes:
     // rerunnableBlocks)
-    HEMLData& d = *m_data;
+    Impl& d = *m_impl;
     const size_t b = static_cast<size_t>(bl);
-    const BlockRun run{d.rows.positionsBase(m_evalX), d.scratch.positions(thread), d.scratch.forces(thread, d.rows.rowCount(b))};
-    const double energy = d.nTerms > 0 ? runOne<true, true>(d, b, m_fns, run) : runOne<true, false>(d, b, m_fns, run);
+    const BlockRun run{d.rows.positionsBase(d.evalX), d.scratch.positions(thread), d.scratch.forces(thread, d.rows.rowCount(b))};
+    const double energy = d.nTerms > 0 ? runOne<true, true>(d, b, run) : runOne<true, false>(d, b, run);
     if (!core::claimTask()) return;  // another run of the block came first
     d.rows.commit(b, run.forces);
     d.blockEnergy[b] = energy;
 }
 
-void HEMLForceField::sumForceRange(double* f, long lo, long hi) { m_data->rows.sumRange(f, lo, hi); }
+void HEMLForceField::sumForceRange(double* f, long lo, long hi) { m_impl->rows.sumRange(f, lo, hi); }
 
 double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) const {
     checkState(state);
-    HEMLData& d = *m_data;
+    Impl& d = *m_impl;
     const double* x = state.x().data()->data();
     const size_t nb = d.blocks.size();
 #pragma omp parallel if (nb > 1)
@@ -498,7 +244,7 @@ double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) c
         simd::DVec rows(4 * d.rows.maxRows());
         const BlockRun run{d.rows.positionsIn(x), rows.data(), nullptr};
 #pragma omp for schedule(dynamic, 1)
-        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, b, m_fns, run);
+        for (size_t b = 0; b < nb; ++b) d.blockEnergy[b] = runOne<false, false>(d, b, run);
     }
     double E = 0.0;
     for (double e : d.blockEnergy) E += e;
@@ -510,8 +256,8 @@ double HEMLForceField::potentialEnergy(const core::BaseMechanicalState& state) c
 
 double HEMLForceField::stableTimeStep(const core::BaseMechanicalState& state) const {
     const double inf = std::numeric_limits<double>::infinity();
-    if (!m_data || !node()) return inf;
-    const HEMLData& d = *m_data;
+    if (!m_impl || !node()) return inf;
+    const Impl& d = *m_impl;
     auto* mass = node()->findInContext<core::BaseMass>();
     if (!mass) return inf;
     if (d.massSpring) {
@@ -555,7 +301,7 @@ namespace {
 /// relaxation (HEMLKernel.h, relax) written for one element with Eigen. R_k = Vol/2 tr(D_k V^-1 S_r V^-T),
 /// S_r the relaxed part's S; gamma_i = A_i R + B_i Y_i (eq. (20)); back to a tensor by the inverse of
 /// the map tr(D_k M) (HEMLKernel.h, traceDk) and S = V M V^T.
-Mat3 viscousStress(const HEMLData& d, size_t slot, const Mat3& V, const Mat3& F, const materials::Invariants& in,
+Mat3 viscousStress(const Impl& d, size_t slot, const Mat3& V, const Mat3& F, const materials::Invariants& in,
                    const materials::Response& r, double shift, const Vec3& a0, const Vec3& b0, const std::vector<DVec>& Y,
                    const double* A, const double* B) {
     const Mat3 I = Mat3::Identity(), C = F.transpose() * F, JCi = in.J * C.inverse();
@@ -583,7 +329,7 @@ Mat3 viscousStress(const HEMLData& d, size_t slot, const Mat3& V, const Mat3& F,
 
 void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vector<core::CellField>& out) const {
     checkState(state);
-    const HEMLData& d = *m_data;
+    const Impl& d = *m_impl;
     const size_t ne = m_tets.size();
     // the viscous history of the state at the scene's time (viscoelastic/HistoryClock.h): its
     // coefficients, and each material's rest shift
@@ -642,22 +388,22 @@ void HEMLForceField::cellData(const core::BaseMechanicalState& state, std::vecto
         vm.values[e] = elements::vonMises(elements::Sym33<double>{sig(0, 0), sig(1, 1), sig(2, 2), sig(0, 1), sig(1, 2), sig(0, 2)});
     }
     out.push_back(std::move(J));
-    if (!m_data->massSpring) out.push_back(std::move(vm));
+    if (!m_impl->massSpring) out.push_back(std::move(vm));
 }
 
 size_t HEMLForceField::elementCount() const { return m_tets.size(); }
-size_t HEMLForceField::blockCount() const { return m_data ? m_data->blocks.size() : 0; }
+size_t HEMLForceField::blockCount() const { return m_impl ? m_impl->blocks.size() : 0; }
 const materials::BaseMaterial* HEMLForceField::materialOf(size_t e) const {
-    if (!m_data || e >= m_data->slotOf.size() || m_data->massSpring) return nullptr;
+    if (!m_impl || e >= m_impl->slotOf.size() || m_impl->massSpring) return nullptr;
     // the block of the element's slot (blocks in slot order) holds its material
-    const HEMLData& d = *m_data;
+    const Impl& d = *m_impl;
     const size_t slot = size_t(d.slotOf[e]);
     const auto b = std::upper_bound(d.blocks.begin(), d.blocks.end(), slot, [](size_t s, const Block& blk) { return s < blk.begin; }) - 1;
     return b->material >= 0 ? d.materials[size_t(b->material)] : nullptr;
 }
 bool HEMLForceField::usesFastPath() const {
-    if (!m_data || m_data->massSpring) return true;
-    for (const auto& f : m_fns)
+    if (!m_impl || m_impl->massSpring) return true;
+    for (const auto& f : m_impl->loops)
         if (!f.inlined) return false;
     return true;
 }

@@ -1,126 +1,26 @@
 #pragma once
-/// Internal to HEMLForceField: the element data as structure of arrays and the element loop
-/// (HEML Algorithm 2, its per-element math in fascia/elements/EdgeForm.h, shared with the device step), templated on how the law is evaluated (an inlined built-in law, a batched
-/// virtual call for any other material, or the mass-spring energy of eq. (38)) and on the scalar
-/// type T of the element data and math: double, or float for precision="mixed" (docs/design.md, section 3). The
-/// element math is written once for both; node positions, the block's node rows and the energy
-/// sum are double in both.
-#include "fascia/base/Simd.h"
-#include "fascia/elements/BlockBuffers.h"
+/// Internal to HEMLForceField: the element loop (HEML Algorithm 2, its per-element math in
+/// fascia/elements/EdgeForm.h, shared with the device step) over the data of HEMLData.h, templated on
+/// how the law is evaluated (HEMLKernelLaws.h: an inlined built-in law, a batched virtual call for any
+/// other material, or the mass-spring energy of eq. (38)) and on the scalar type T of the element data
+/// and math: double, or float for precision="mixed" (docs/design.md, section 3). The element math is
+/// written once for both; node positions, the block's node rows and the energy sum are double in both.
+#include "HEMLData.h"
+
 #include "fascia/elements/EdgeForm.h"
 #include "fascia/elements/Hd.h"
 #include "fascia/materials/Laws.h"
-#include "fascia/viscoelastic/HistoryClock.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
-#include <vector>
 
 namespace fascia::heml {
-
-using simd::DVec;
-using simd::IVec;
-/// 64-byte aligned per-slot array of the element scalar type T.
-template <class T>
-using SVec = std::vector<T, simd::AlignedAllocator<T>>;
-using FVec = SVec<float>;
-
-/// Elements per chunk of the element loop (two AVX-512 vectors of doubles; docs/performance.md, lesson 3).
-constexpr int kLanes = 16;
-/// Elements per block: the unit of work and of node buffers. Fixed, so the block count depends on
-/// the mesh only, never on the thread count (docs/design.md, determinism).
-constexpr size_t kBlockSize = 1024;
 
 using elements::edgeA;
 using elements::edgeB;
 using elements::traceDk;
-
-/// A contiguous range of (padded) element slots with one material. Its elements refer to the
-/// block's own node rows (HEMLData::rows, block of the same index): positions are copied into them
-/// before the block runs (so the gather reads from cache) and its forces are added into them.
-struct Block {
-    size_t begin = 0, end = 0;
-    int material = -1;  ///< index into HEMLData::materials, -1 in mass-spring mode
-};
-
-/// The per-slot element arrays the loop reads, in the element scalar type T.
-template <class T>
-struct ElementArrays {
-    SVec<T> vol;      ///< rest volume Vol (0 in padding slots)
-    SVec<T> invDetV;  ///< 1 / det(V1, V2, V3) (signed)
-    /// G = V^-1 V^-T (symmetric: G11 G22 G33 G12 G23 G13). With D(l) = sum_k l_k D_k (eq. (A.4)-(A.5))
-    /// and C_k = V^-T D_k V^-1 (eq. (A.6)), Appendix C's vtr_k = tr C_k = tr(D_k G) and
-    /// Mtr_ij = tr(C_i C_j) = tr(D_i G D_j G): the loop evaluates vtr and Mtr l = (tr(D_k G D(l) G))_k
-    /// from these 6 numbers instead of loading the 27 of vtr and Mtr (docs/performance.md, lesson 7).
-    SVec<T> G[6];
-    SVec<T> w4[3], w6[3];    ///< V^-1 a0, V^-1 b0: a0.C_k a0 = w.D_k w (empty when no material reads I4 / I6)
-    SVec<T> kk[6], len0[6];  ///< mass-spring mode: stiffness share and rest length per edge
-
-    /// Bytes of the arrays (sizeof(T) each: 4 in mixed mode), for HEMLForceField::layoutBytes.
-    size_t bytes() const {
-        size_t n = vol.size() + invDetV.size();
-        for (int k = 0; k < 6; ++k) n += G[k].size() + kk[k].size() + len0[k].size();
-        for (int k = 0; k < 3; ++k) n += w4[k].size() + w6[k].size();
-        return n * sizeof(T);
-    }
-    /// Calls f(mine, other's) on each pair of arrays (the rounding to float of precision="mixed").
-    template <class U, class F>
-    void zip(const ElementArrays<U>& o, F&& f) {
-        f(vol, o.vol);
-        f(invDetV, o.invDetV);
-        for (int k = 0; k < 6; ++k) f(G[k], o.G[k]), f(kk[k], o.kk[k]), f(len0[k], o.len0[k]);
-        for (int k = 0; k < 3; ++k) f(w4[k], o.w4[k]), f(w6[k], o.w6[k]);
-    }
-};
-
-/// Everything the element loop reads and writes.
-struct HEMLData {
-    size_t nNodes = 0, nElements = 0, nSlots = 0;
-    std::vector<int> nodeOf;      ///< internal node -> state node (reverse Cuthill-McKee order)
-    std::vector<int> internalOf;  ///< state node -> internal node
-    std::vector<int> elementOf;   ///< slot -> input element (-1: padding)
-    std::vector<int> slotOf;      ///< input element -> slot
-
-    // per slot (structure of arrays)
-    IVec node[4];          ///< the block's node rows (in HEMLData::rows; internal nodes before that)
-    /// The element arrays of precision="double" (el) or "mixed" (elf): the other one is empty, so
-    /// mixed mode holds 4 + 4 + 6 * 4 bytes per element besides the node indices, not 8 + 8 + 6 * 8.
-    ElementArrays<double> el;
-    ElementArrays<float> elf;
-    bool mixed = false;       ///< precision="mixed": the loop runs in float (elf)
-    double totalVolume = 0;   ///< sum of the rest volumes (in double, before any rounding to float)
-    template <class T>
-    const ElementArrays<T>& arrays() const {
-        if constexpr (std::is_same_v<T, float>) return elf;
-        else return el;
-    }
-    /// The rest volume of a slot in double (from whichever arrays are kept).
-    double volume(size_t slot) const { return mixed ? double(elf.vol[slot]) : el.vol[slot]; }
-
-    std::vector<Block> blocks;
-    std::vector<const materials::BaseMaterial*> materials;
-    bool massSpring = false;
-    double J0 = 0.4;
-
-    /// the node rows of the blocks (compact rows, 4 doubles each) and their ordered sum
-    elements::CompactBlockBuffers rows;
-    elements::BlockScratch scratch;  ///< each thread's rows for a block's run (HEMLForceField::runForceBlock)
-    std::vector<double> blockEnergy;
-
-    // viscoelasticity (eq. (18)-(20)): per term and link coefficient (6), one value per slot
-    int nTerms = 0;
-    bool relaxIso = false, relaxVol = false;
-    /// per material: the s of s ln J moved from the isochoric to the volumetric part before one of
-    /// them relaxes, so that each is stress-free at rest (materials/RelaxationSplit.h); 0 when both relax
-    std::vector<double> restShift;
-    std::vector<double> A, B;         ///< A_i, B_i of the last evaluation (TLED eq. (30), HEML eq. (20))
-    /// the committed history and the last evaluation's; double in both precisions (the loop
-    /// converts the relaxed link coefficients to double, and the sum of the terms back to T)
-    std::vector<DVec> Yprev, Ycur;
-    viscoelastic::HistoryClock clock;  ///< when the history advances and over what time
-};
 
 /// Scratch of one chunk (on the stack of the thread running a block), in the element scalar type T
 /// but for the gathered positions (double: the edge differences are taken in double).
@@ -153,58 +53,11 @@ struct alignas(64) Chunk {
     }
 };
 
-/// An inlined built-in law, evaluated in T (the laws are templated on the scalar, Material.h).
-template <class Law>
-struct LawEval {
-    static constexpr bool spring = false;
-    const Law& law;
-    unsigned uses() const { return Law::uses; }
-    template <class T>
-    void operator()(Chunk<T>& c, double J0) const {
-        // plain auto-vectorisation: "omp simd" would privatise the structs into arrays and fail
-#pragma GCC ivdep
-        for (int j = 0; j < kLanes; ++j) {
-            materials::InvariantsT<T> in;
-            in.I1 = c.I1[j];
-            in.I2 = c.I2[j];
-            in.J = c.J[j];
-            in.I4 = c.I4[j];
-            in.I6 = c.I6[j];
-            materials::ResponseT<T> r;
-            materials::evaluateLaw(law, in, J0, r);
-            c.store(j, r);
-        }
-    }
-};
-
-/// Any material: one virtual call per chunk. BaseMaterial::evaluate is double only, so a float
-/// chunk's invariants go in as double and the response comes back rounded to float.
-struct GenericEval {
-    static constexpr bool spring = false;
-    const materials::BaseMaterial* m;
-    unsigned usesBits;
-    unsigned uses() const { return usesBits; }
-    template <class T>
-    void operator()(Chunk<T>& c, double J0) const {
-        for (int j = 0; j < kLanes; ++j)
-            c.inv[j] = materials::Invariants{double(c.I1[j]), double(c.I2[j]), double(c.J[j]), double(c.I4[j]), double(c.I6[j])};
-        m->evaluate(c.inv, c.resp, kLanes, J0);
-        for (int j = 0; j < kLanes; ++j) {
-            c.store(j, c.resp[j]);
-        }
-    }
-};
-
-/// Mass-spring energy of HEML eq. (38).
-struct SpringEval {
-    static constexpr bool spring = true;
-    unsigned uses() const { return 0; }
-};
 /// Edges, squared lengths l_k, invariants (eq. (C.1)) and J of the chunk at e0. The edges are
 /// differences of the double positions, rounded to T once formed (in float: accurate edges of a
 /// small element far from the origin); all after that is in T.
 template <class T, class Eval>
-FASCIA_INLINE void edgesAndInvariants(const HEMLData& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
+FASCIA_INLINE void edgesAndInvariants(const Impl& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
     const ElementArrays<T>& el = d.arrays<T>();
     const T* invDetV = el.invDetV.data() + e0;
     // (GCC ivdep, not omp simd: omp simd would privatise the small local arrays into memory)
@@ -237,7 +90,7 @@ FASCIA_INLINE void edgesAndInvariants(const HEMLData& d, Chunk<T>& c, size_t e0,
 
 /// Generalised forces g_k = Vol dW/dl_k (eq. (29), (C.2)-(C.3)) and Vol dW/dJ of the chunk at e0.
 template <class T, class Eval>
-FASCIA_INLINE void generalisedForces(const HEMLData& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
+FASCIA_INLINE void generalisedForces(const Impl& d, Chunk<T>& c, size_t e0, bool useI4, bool useI6) {
     const ElementArrays<T>& el = d.arrays<T>();
     const T* vol = el.vol.data() + e0;
 #pragma GCC ivdep
@@ -273,7 +126,7 @@ FASCIA_INLINE void generalisedForces(const HEMLData& d, Chunk<T>& c, size_t e0, 
 
 /// The relaxed part R_k of the chunk's generalised forces as link coefficients (see relax), in T.
 template <class T>
-FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift, T rel[6][kLanes]) {
+FASCIA_INLINE void relaxedPart(Impl& d, Chunk<T>& c, size_t e0, double shift, T rel[6][kLanes]) {
     const ElementArrays<T>& el = d.arrays<T>();
     // the parts that relax, each stress-free at rest: Vol s / J moved from Qi to Qv (their sum, the
     // elastic response, unchanged; max(J0, J) also keeps padding slots, where Vol = 0, finite)
@@ -296,7 +149,7 @@ FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift
 }
 
 /// Viscoelastic relaxation of the chunk's generalised forces (see HEMLForceField.h); shift: the
-/// block material's HEMLData::restShift.
+/// block material's Impl::restShift.
 ///
 /// What relaxes is the relaxed part's second Piola-Kirchhoff stress as a whole, written as six link
 /// coefficients R_k = Vol/2 S : C_k (the map of S onto them is linear and fixed by the rest shape,
@@ -315,7 +168,7 @@ FASCIA_INLINE void relaxedPart(HEMLData& d, Chunk<T>& c, size_t e0, double shift
 /// (so the states do not accumulate float rounding over the steps) and the sum of the terms is
 /// rounded to T once, where it is subtracted.
 template <class T>
-FASCIA_INLINE void relax(HEMLData& d, Chunk<T>& c, size_t e0, double shift) {
+FASCIA_INLINE void relax(Impl& d, Chunk<T>& c, size_t e0, double shift) {
     T rel[6][kLanes];
     relaxedPart(d, c, e0, shift, rel);
     // eq. (20) / TLED eq. (30): gamma_i^n = A_i R^n + B_i gamma_i^(n-1); eq. (18): g_k - sum_i gamma_i
@@ -340,7 +193,7 @@ FASCIA_INLINE void relax(HEMLData& d, Chunk<T>& c, size_t e0, double shift) {
 
 /// Nodal forces of the chunk at e0 from its generalised forces.
 template <class T>
-FASCIA_INLINE void nodalForces(const HEMLData& d, Chunk<T>& c, size_t e0) {
+FASCIA_INLINE void nodalForces(const Impl& d, Chunk<T>& c, size_t e0) {
     const T* invDetV = d.arrays<T>().invDetV.data() + e0;
 #pragma GCC ivdep
     for (int j = 0; j < kLanes; ++j) {
@@ -369,19 +222,11 @@ FASCIA_INLINE const NodalRows& forcesInDouble(const Chunk<float>& c, NodalRows& 
     return tmp;
 }
 
-/// Where a block's run reads and writes: the positions x (HEMLData::rows.positionsIn's result), and
-/// the thread's own rows (elements::BlockScratch) for the block's positions and, cleared, its forces.
-struct BlockRun {
-    const double* x = nullptr;
-    double* rows = nullptr;
-    double* forces = nullptr;  ///< (null for the energy alone)
-};
-
 /// Runs block bi: its positions into run.rows, forces into run.forces (when Forces) and its energy
 /// (summed in double), the element math in T. Visco applies eq. (18)-(20) to the generalised forces
 /// (see HEMLForceField.h).
 template <class T, class Eval, bool Forces, bool Visco>
-double runBlock(HEMLData& d, size_t bi, const Eval& eval, const BlockRun& run) {
+double runBlock(Impl& d, size_t bi, const Eval& eval, const BlockRun& run) {
     Chunk<T> c;
     alignas(64) NodalRows fd;  // (float chunks: their nodal forces in double)
     double energy = 0.0;

@@ -1,12 +1,11 @@
 // HEMLForceField::layoutBytes: the bytes one addForce moves, counted from the arrays after init
 // (core::LayoutBytes: each array once per pass that reads it, once more per pass that writes it).
-#include "fascia/heml/HEMLForceField.h"
-#include "HEMLKernel.h"
+#include "HEMLData.h"
 
 namespace fascia::heml {
 
 core::LayoutBytes HEMLForceField::layoutBytes() const {
-    const HEMLData& d = *m_data;
+    const Impl& d = *m_impl;
     core::LayoutBytes b = d.rows.stepBytes();  // positions in, the rows, their sum into f
     constexpr size_t D = sizeof(double);
     // per slot, what the element loop reads: the node rows, the volume, 1 / det V (J) and G; the

@@ -224,13 +224,11 @@ struct OutputHistory {
 
 } // namespace
 
-void TLEDForceField::addForce(core::BaseMechanicalState& state, Positions& f, double t) {
+long TLEDForceField::forceNodes(const core::BaseMechanicalState& state, const Positions& f) const {
     if (f.size() < m_impl->nodeCount)
         elements::runtimeError(*this, "its elements use " + std::to_string(m_impl->nodeCount) + " nodes but the force array has " +
                                           std::to_string(f.size()));
-    beginForces(state, t);
-    // one parallel region: displacements, the blocks, then the sum of the block buffers
-    core::runThreadedForces(*this, core::flat(f), static_cast<long>(std::min(f.size(), state.size())));
+    return static_cast<long>(std::min(f.size(), state.size()));
 }
 
 void TLEDForceField::beginForces(core::BaseMechanicalState& state, double t) {
@@ -255,8 +253,6 @@ long TLEDForceField::prepareNodes() const { return static_cast<long>(m_impl->nod
 void TLEDForceField::prepareRange(long lo, long hi) {
     displacementRange(*m_impl, *m_impl->evalState, m_impl->u.data(), lo, hi);
 }
-
-long TLEDForceField::forceBlocks() const { return static_cast<long>(m_impl->blocks.size()); }
 
 bool TLEDForceField::rerunnableBlocks() const { return m_impl->visco.empty(); }
 

@@ -51,11 +51,9 @@
 /// inlined, vectorised loop (dispatch once per block on Material<Law>); other materials are
 /// evaluated by one virtual call per 16 elements.
 #include "fascia/elements/GroupMaterials.h"
+#include "fascia/elements/StagedForceField.h"
 #include "fascia/elements/TetMesh.h"
 #include "fascia/materials/Material.h"
-#include "fascia/sim/LayoutBytes.h"
-#include "fascia/sim/Mechanics.h"
-#include "fascia/sim/ThreadedStep.h"
 #include "fascia/viscoelastic/ElementHistory.h"
 
 #include <memory>
@@ -68,9 +66,7 @@ class ViscoelasticProny;
 
 namespace fascia::heml {
 
-struct HEMLData;
-
-class HEMLForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces, public viscoelastic::ElementHistory {
+class HEMLForceField : public elements::StagedForceField, public viscoelastic::ElementHistory {
 public:
     HEMLForceField();
     ~HEMLForceField() override;
@@ -78,16 +74,16 @@ public:
     void init() override;
     std::vector<core::Component*> dependencies() const override;
 
-    void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
-    /// addForce in stages for the group's threaded step (fascia/sim/ThreadedStep.h): the history and checks,
-    /// the positions in internal order (large meshes), the blocks, the ordered sum of the node rows.
+    /// The stages of addForce (elements/StagedForceField.h): the history and checks, the positions in
+    /// internal order (large meshes), the blocks, the ordered sum of the node rows.
     void beginForces(core::BaseMechanicalState& state, double t) override;
     long prepareNodes() const override;
     void prepareRange(long lo, long hi) override;
-    long forceBlocks() const override;
     bool rerunnableBlocks() const override;
     void runForceBlock(long b, int thread) override;
     void sumForceRange(double* f, long lo, long hi) override;
+    size_t blockCount() const override;
+    bool usesFastPath() const override;
     /// Elastic energy sum_e Vol_e W_e (J) at the state's positions (viscous history not included).
     double potentialEnergy(const core::BaseMechanicalState& state) const override;
     /// min over elements of h_e / c_e: h_e the shortest altitude 3 Vol / (largest face area) of the
@@ -120,13 +116,8 @@ public:
     /// Positions array's data()), with the viscous history of the last addForce, not advanced.
     /// For benchmarks and embedding programs.
     void addForceRaw(const double* x, double* f);
-    /// Number of element blocks (fixed at init from the element count; not the thread count).
-    size_t blockCount() const;
     /// The material of each element (input order); null in mass-spring mode.
     const materials::BaseMaterial* materialOf(size_t element) const;
-    /// True when the inlined loop of a built-in law runs (false: batched virtual evaluation).
-    bool usesFastPath() const;
-    struct BlockFns;
 
     core::Link<materials::BaseMaterial> m_material{this, core::ParamSpec("material").help(
         "the material (a component of the materials plugin), e.g. \"@liverMat\"; default: the material in the node's context")};
@@ -150,20 +141,21 @@ public:
         "of the largest nodal force (5e-6 at 3 % strain, 5e-7 at 30 %), the energy by about 1e-6 relative at 3 %: "
         "float rounding, relatively larger at small strains; use double for verification and convergence studies"), "double"};
 
+    struct Impl;
+
+protected:
+    long forceNodes(const core::BaseMechanicalState& state, const Positions& f) const override;
+
 private:
+    /// Node order, blocks, element loops, per-slot element data and viscous states (HEMLElements.cpp).
     void precompute(const Positions& rest, const std::vector<materials::BaseMaterial*>& elementMaterial);
-    /// precompute's per-slot data (HEML Algorithm 1) from the rest positions; a degenerate element fails.
-    void fillSlots(const Positions& rest);
-    void evaluate(const double* x, double* f);
     void checkState(const core::BaseMechanicalState& state) const;
 
     Tetrahedra m_tets;                                         // input order
     Positions m_rest;                                          // rest positions (state order)
     std::vector<Vec3> m_dirA, m_dirB;                          // unit fibre directions per element (empty: unused)
-    std::vector<BlockFns> m_fns;                               // element loops per distinct material
     viscoelastic::ViscoelasticProny* m_visco = nullptr;
-    std::unique_ptr<HEMLData> m_data;
-    const double* m_evalX = nullptr;  // the positions of the evaluation under way (3 per state node)
+    std::unique_ptr<Impl> m_impl;
 };
 
 } // namespace fascia::heml

@@ -64,10 +64,8 @@
 /// meshes: a block's range is about a plane of the mesh) each buffer holds instead one row per node
 /// its elements use (nodeBuffers="auto").
 #include "fascia/elements/GroupMaterials.h"
+#include "fascia/elements/StagedForceField.h"
 #include "fascia/materials/Material.h"
-#include "fascia/sim/LayoutBytes.h"
-#include "fascia/sim/Mechanics.h"
-#include "fascia/sim/ThreadedStep.h"
 #include "fascia/viscoelastic/ElementHistory.h"
 
 #include <array>
@@ -81,7 +79,7 @@ class ViscoelasticProny;
 
 namespace fascia::tled {
 
-class TLEDForceField : public core::BaseForceField, public core::LayoutReport, public core::ThreadedForces, public viscoelastic::ElementHistory {
+class TLEDForceField : public elements::StagedForceField, public viscoelastic::ElementHistory {
 public:
     TLEDForceField();
     ~TLEDForceField() override;
@@ -90,16 +88,16 @@ public:
     void dtChanged(double dt) override;
     std::vector<core::Component*> dependencies() const override;
 
-    void addForce(core::BaseMechanicalState& state, Positions& f, double t) override;
-    /// addForce in stages for the group's threaded step (fascia/sim/ThreadedStep.h): the history and checks,
-    /// u = x - X per internal node, the blocks, the ordered sum of the block buffers.
+    /// The stages of addForce (elements/StagedForceField.h): the history and checks, u = x - X per
+    /// internal node, the blocks, the ordered sum of the block buffers.
     void beginForces(core::BaseMechanicalState& state, double t) override;
     long prepareNodes() const override;
     void prepareRange(long lo, long hi) override;
-    long forceBlocks() const override;
     bool rerunnableBlocks() const override;
     void runForceBlock(long b, int thread) override;
     void sumForceRange(double* f, long lo, long hi) override;
+    size_t blockCount() const override;
+    bool usesFastPath() const override;
     /// Elastic strain energy (J) at the current positions, hourglass energy included.
     double potentialEnergy(const core::BaseMechanicalState& state) const override;
     /// min over elements of L_e / c (TLED section 7): L_e the smallest altitude 3V/A_max of a
@@ -136,16 +134,10 @@ public:
     double restVolume(size_t e) const;
     /// Stable time step (s) of element e alone at density rho, see stableTimeStep(); a linear search.
     double elementTimeStep(size_t e, double rho) const;
-    /// Number of fixed blocks the element loop is split into (for tests of determinism).
-    size_t blockCount() const;
     /// Node rows of the blocks' force buffers, all blocks together (for tests of the node ordering).
     size_t bufferRows() const;
     /// True when the blocks' force buffers are compact rows (nodeBuffers), false for node ranges.
     bool compactBuffers() const;
-    /// True when every element group runs the inlined loop of a built-in law (false: some group's
-    /// material is not in materials::BuiltinMaterials and runs the generic loop, one virtual
-    /// evaluate() per batch).
-    bool usesFastPath() const;
 
     core::Param<MeshData> m_mesh{this, core::ParamSpec("mesh").help(
         "mesh to take the elements (tetrahedra and hexahedra), group tags and cell arrays from, e.g. "
@@ -186,6 +178,9 @@ public:
         "double to about 1e-6 of the largest (docs/performance.md, mixed precision)"), "double"};
 
     struct Impl;
+
+protected:
+    long forceNodes(const core::BaseMechanicalState& state, const Positions& f) const override;
 
 private:
     /// Elements, materials, fibres, node order, blocks and packed element data (TLEDElements.cpp).
