@@ -300,8 +300,10 @@ namespace {
 /// (what the Prony histories subtract from the elastic S, for a stress output): the element loop's
 /// relaxation (HEMLKernel.h, relax) written for one element with Eigen. R_k = Vol/2 tr(D_k V^-1 S_r V^-T),
 /// S_r the relaxed part's S; gamma_i = A_i R + B_i Y_i (eq. (20)); back to a tensor by the inverse of
-/// the map tr(D_k M) (HEMLKernel.h, traceDk) and S = V M V^T.
-Mat3 viscousStress(const Impl& d, size_t slot, const Mat3& V, const Mat3& F, const materials::Invariants& in,
+/// the map tr(D_k M) (HEMLKernel.h, traceDk) and S = V M V^T. (Out of line: inlined, it changes how
+/// the compiler contracts cellData's own arithmetic into fused multiply-adds, and J and the von
+/// Mises stress move in the last bit; tools/compare-builds.sh checks that they do not.)
+[[gnu::noinline]] Mat3 viscousStress(const Impl& d, size_t slot, const Mat3& V, const Mat3& F, const materials::Invariants& in,
                    const materials::Response& r, double shift, const Vec3& a0, const Vec3& b0, const std::vector<DVec>& Y,
                    const double* A, const double* B) {
     const Mat3 I = Mat3::Identity(), C = F.transpose() * F, JCi = in.J * C.inverse();
