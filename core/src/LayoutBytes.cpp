@@ -1,5 +1,6 @@
 #include "fascia/sim/LayoutBytes.h"
 #include "fascia/sim/LoadTerms.h"
+#include "fascia/sim/StepTerms.h"
 
 namespace fascia::core {
 
@@ -9,5 +10,8 @@ LayoutReport::~LayoutReport() = default;
 // (the same for the load terms of fascia/sim/LoadTerms.h)
 NodalLoad::~NodalLoad() = default;
 PressureLoad::~PressureLoad() = default;
+// (and for the integrators' and constraints' terms of fascia/sim/StepTerms.h)
+ExplicitScheme::~ExplicitScheme() = default;
+AxisHold::~AxisHold() = default;
 
 } // namespace fascia::core

@@ -2,26 +2,20 @@
 
 #include "DeviceLaws.h"
 #include "fascia/base/Error.h"
-#include "fascia/elements/FibreField.h"
-#include "fascia/elements/EdgeForm.h"
-#include "fascia/elements/Geometry.h"
-#include "fascia/elements/GroupMaterials.h"
+#include "fascia/elements/DeviceForm.h"
 #include "fascia/materials/RelaxationSplit.h"
-#include "fascia/scene/Node.h"
+#include "fascia/sim/StepTerms.h"
 #include "fascia/viscoelastic/HistoryClock.h"
+#include "fascia/viscoelastic/ViscoelasticProny.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
 namespace fascia::cuda {
 
 namespace {
-
-template <class P>
-const P* paramOf(const core::Component& c, const std::string& name) {
-    return dynamic_cast<const P*>(c.findParam(name));
-}
 
 [[noreturn]] void unsupported(const core::Component& c, const std::string& what) {
     c.fail(what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
@@ -37,26 +31,30 @@ const P* paramOf(const core::Component& c, const std::string& name) {
            {"remove CudaStep to run this scene on the CPU"});
 }
 
-/// The integrator and its parameters: SemiImplicitEuler or CentralDifference.
+/// The integrator's scheme and its parameters (core::ExplicitScheme, fascia/sim/StepTerms.h):
+/// SemiImplicitEuler or CentralDifference.
 void readIntegrator(const core::BaseIntegrator& integ, StepSetup& s) {
-    if (integ.className() == "CentralDifference") s.scheme = StepSetup::Scheme::CentralDifference;
-    else if (integ.className() != "SemiImplicitEuler")
-        unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler or CentralDifference)");
-    if (const auto* d = paramOf<core::Param<double>>(integ, "damping")) s.damping = d->get();
-    if (const auto* h = paramOf<core::Param<bool>>(integ, "halfStepStart")) s.halfStepStart = h->get();
+    const auto* scheme = dynamic_cast<const core::ExplicitScheme*>(&integ);
+    if (!scheme)
+        unsupported(integ, integ.className() + " (the device step integrates with SemiImplicitEuler or CentralDifference: an integrator "
+                                               "that gives its scheme, core::ExplicitScheme)");
+    const core::ExplicitScheme::Terms t = scheme->schemeTerms();
+    s.scheme = t.update == core::ExplicitScheme::Update::CentralDifference ? StepSetup::Scheme::CentralDifference
+                                                                             : StepSetup::Scheme::SemiImplicitEuler;
+    s.damping = t.damping;
+    s.halfStepStart = t.halfStepStart;
 }
 
-/// The Prony series beside the TLED force field, as TLEDForceField takes them (TLEDForceField.cpp
-/// init): every ViscoelasticProny of its node in order, each part relaxed by one series at most,
-/// the parts a series relaxes stress-free at rest for every material group (materials/
-/// RelaxationSplit.h, a located error at the series' apply otherwise), s ln J of each group's
-/// material moved between the parts when a series relaxes one alone.
-void readSeries(const core::BaseForceField& ff, StepSetup& s) {
-    if (!ff.node()) return;
-    for (const core::Component* c : ff.node()->findAllLocal<core::Component>()) {
-        if (c->className() != "ViscoelasticProny") continue;
+/// The Prony series the element force field relaxes with (elements::DeviceForm::series), as
+/// TLEDForceField takes them (TLEDForceField.cpp init): in its order, each part relaxed by one series
+/// at most, the parts a series relaxes stress-free at rest for every material group (materials/
+/// RelaxationSplit.h, a located error at the series' apply otherwise: read from the series now, so
+/// that a series changed after init is checked too), s ln J of each group's material moved between
+/// the parts when a series relaxes one alone.
+void readSeries(const elements::DeviceForm& form, StepSetup& s) {
+    for (const core::Component* c : form.series) {
         const auto* p = dynamic_cast<const viscoelastic::ViscoelasticProny*>(c);
-        if (!p) unsupported(*c, "this ViscoelasticProny (not the class the device step knows)");
+        if (!p) unsupported(*c, c->className() + " (a relaxation that is not the ViscoelasticProny the device step knows)");
         StepSetup::Series x{p, p->relaxesIsochoric(), p->relaxesVolumetric(), static_cast<int>(p->termCount())};
         for (const StepSetup::Series& y : s.series)
             if ((x.iso && y.iso) || (x.vol && y.vol)) unsupported(*c, "a second ViscoelasticProny relaxing the same part of the stress");
@@ -80,41 +78,23 @@ void readSeries(const core::BaseForceField& ff, StepSetup& s) {
     }
 }
 
-/// The mesh TLEDForceField takes its elements, groups and cell arrays from (TLEDForceField.cpp
-/// init): its `mesh`, else, without tetrahedra or hexahedra given, the mesh source in its context;
-/// null for elements given as lists.
-const MeshData* meshOf(const core::BaseForceField& ff) {
-    if (const auto* m = paramOf<core::Param<MeshData>>(ff, "mesh"); m && m->isSet()) return &m->get();
-    for (const char* name : {"tetrahedra", "hexahedra"})
-        if (const auto* p = ff.findParam(name); p && p->isSet()) return nullptr;
-    const auto* source = ff.node() ? ff.node()->findInContext<core::BaseTopology>() : nullptr;
-    return source ? &source->meshData() : nullptr;
-}
-
-/// The material of each element and the groups of elements by material, in order of first
-/// appearance (tetrahedra, then hexahedra), from TLEDForceField's material and groupMaterials as it
-/// assigns them (elements::assignMaterials, TLEDElements.cpp precompute); a material that is not a
-/// law of DeviceLaws.h is a located error naming it. Returns the materials per cell (tetrahedra,
-/// then hexahedra).
-std::vector<const materials::BaseMaterial*> readGroups(const core::BaseForceField& ff, const MeshData* mesh, size_t nT, size_t nH,
-                                                       StepSetup& s) {
-    const auto* groups = paramOf<core::Param<elements::GroupMaterialList>>(ff, "groupMaterials");
-    const auto* link = paramOf<core::Link<materials::BaseMaterial>>(ff, "material");
-    if (!groups || !link) unsupported(ff, "this TLEDForceField (its parameters are not the ones the device step knows)");
-    const elements::MaterialAssignment assigned =
-        elements::assignMaterials(ff, *groups, elements::defaultMaterial(ff, *link, *groups), mesh, nT, nH);
-    std::vector<const materials::BaseMaterial*> cell(assigned.tetrahedra.begin(), assigned.tetrahedra.end());
-    cell.insert(cell.end(), assigned.hexahedra.begin(), assigned.hexahedra.end());
+/// The groups of elements by material, in order of first appearance (tetrahedra, then hexahedra),
+/// from the material of each cell as the force field assigned them (elements::DeviceForm::
+/// cellMaterial); a material that is not a law of DeviceLaws.h is a located error naming it, at the
+/// force field's groupMaterials when that names it, else at the material.
+void readGroups(const core::BaseForceField& ff, const elements::DeviceForm& form, size_t nT, StepSetup& s) {
+    const std::vector<const materials::BaseMaterial*>& cell = form.cellMaterial;
     const auto groupOf = [&](const materials::BaseMaterial* m) {
         for (size_t g = 0; g < s.groups.size(); ++g)
             if (s.groups[g].material == m) return g;
+        if (!m) ff.fail("its device form has a cell without a material");
         const bool onDevice = selectDeviceLaw(m, [](auto tag, const materials::BaseMaterial*) {
             return !std::is_same_v<typename decltype(tag)::type, elements::GenericLaw>;
         });
         const std::string laws = " (the device step runs " + deviceLawNames() + ")";
         // a group's material: at the groupMaterials that names it; the force field's one material: at the material
-        if (!onDevice && groups->isSet() && m != link->get())
-            unsupported(ff, *groups, "groupMaterials: the material " + m->className() + " '" + m->name() + "'" + laws);
+        if (!onDevice && form.groupMaterials && m != form.material)
+            unsupported(ff, *form.groupMaterials, "groupMaterials: the material " + m->className() + " '" + m->name() + "'" + laws);
         if (!onDevice) unsupported(*m, "the material " + m->className() + laws);
         StepSetup::Group g;
         g.material = m;
@@ -135,73 +115,57 @@ std::vector<const materials::BaseMaterial*> readGroups(const core::BaseForceFiel
         s.groups[0].tets.clear();  // one material: its kernels run over every element, with no list
         s.groups[0].hexes.clear();
     }
-    return cell;
 }
 
-/// The fibre directions per element from TLEDForceField's fibreArray and fibreArray2, as it
-/// resolves them (elements::resolveFibres: unit length, the material's own where a direction has no
-/// array), into the rows of StepArrays fa, fb, hfa, hfb; nothing without an array (each group's
+/// The fibre directions per element of TLED's form (elements::DeviceForm::fibre: from its
+/// fibreArray and fibreArray2, unit, (1 0 0) or (0 1 0) where a cell's material does not read
+/// them) into the rows of StepArrays fa, fb, hfa, hfb; nothing without an array (each group's
 /// material then gives its elements' directions, StepSetup::Group a0, b0).
-void readFibres(const core::BaseForceField& ff, const MeshData* mesh, const std::vector<const materials::BaseMaterial*>& cell, size_t nT,
-                StepSetup& s) {
-    elements::FibreField field[2];
-    for (int w = 0; w < 2; ++w) {
-        const auto* array = paramOf<core::Param<std::string>>(ff, w == 0 ? "fibreArray" : "fibreArray2");
-        if (!array) unsupported(ff, "this TLEDForceField (its parameters are not the ones the device step knows)");
-        const unsigned bit = w == 0 ? materials::BaseMaterial::UsesI4 : materials::BaseMaterial::UsesI6;
-        // (a direction no material reads: TLEDForceField warned about its array already)
-        if (std::any_of(cell.begin(), cell.end(), [&](const materials::BaseMaterial* m) { return (m->uses() & bit) != 0; }))
-            field[w] = elements::resolveFibres(ff, w, *array, mesh, cell, nT);
-    }
-    s.fibresPerElement = field[0].perElement || field[1].perElement;
+void readFibres(const elements::DeviceForm& form, size_t nT, size_t nH, StepSetup& s) {
+    s.fibresPerElement = form.fibresPerElement;
     if (!s.fibresPerElement) return;
-    const size_t nH = cell.size() - nT;
     for (int w = 0; w < 2; ++w) {
-        if (!field[w].used) continue;
+        const std::vector<double>& dir = form.fibre[w];
+        if (dir.empty()) continue;
         std::vector<double>& t = w == 0 ? s.fa : s.fb;
         std::vector<double>& h = w == 0 ? s.hfa : s.hfb;
         t.assign(3 * nT, 0.0);
         h.assign(3 * nH, 0.0);
-        for (size_t c = 0; c < cell.size(); ++c) {
-            // (a cell whose material does not read this direction: (1 0 0) or (0 1 0), never read)
-            const Vec3 d = field[w].dir[c] == Vec3::Zero() ? Vec3(w == 0 ? 1 : 0, w == 0 ? 0 : 1, 0) : field[w].dir[c];
+        for (size_t c = 0; c < nT + nH; ++c)
             for (size_t i = 0; i < 3; ++i) {
-                if (c < nT) t[i * nT + c] = d[static_cast<Eigen::Index>(i)];
-                else h[i * nH + c - nT] = d[static_cast<Eigen::Index>(i)];
+                if (c < nT) t[i * nT + c] = dir[3 * c + i];
+                else h[i * nH + c - nT] = dir[3 * c + i];
             }
-        }
     }
 }
 
-/// The materials and the options of the TLED force field, each checked against what the device
-/// step runs: a material per group (groupMaterials) or one for all, fibre directions per material
-/// or per element (fibreArray, fibreArray2), the Prony series.
-void readTLED(const core::BaseForceField& ff, StepSetup& s) {
-    if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
-    if (const auto* k = paramOf<core::Param<double>>(ff, "hourglassStiffness")) s.hourglass = k->get();
-    const size_t nT = ff.tetrahedra() ? ff.tetrahedra()->size() : 0, nH = ff.hexahedra() ? ff.hexahedra()->size() : 0;
-    const MeshData* mesh = meshOf(ff);
-    const std::vector<const materials::BaseMaterial*> cell = readGroups(ff, mesh, nT, nH, s);
-    readFibres(ff, mesh, cell, nT, s);
-    readSeries(ff, s);
+/// A device form's array of `per` values for each of n elements, else a located error naming it.
+const std::vector<double>& sized(const core::BaseForceField& ff, const std::vector<double>& a, size_t per, size_t n, const char* name) {
+    if (a.size() != per * n)
+        ff.fail("its device form has " + std::to_string(a.size()) + " values of " + name + " for " + std::to_string(n) +
+                " elements (" + std::to_string(per) + " each)");
+    return a;
 }
 
-/// The materials and the options of the HEML force field (HEMLForceField.cpp init), checked as
-/// readTLED does: its mass-spring mode (`stiffness`, no material), else a material per group or one
-/// for all, fibre arrays, and one Prony series (HEMLForceField takes one, and refuses a second).
-void readHEML(const core::BaseForceField& ff, StepSetup& s) {
-    s.form = StepSetup::Form::Edges;
-    if (const auto* j0 = paramOf<core::Param<double>>(ff, "J0")) s.J0 = j0->get();
-    const auto* k = paramOf<core::Param<double>>(ff, "stiffness");
-    if (!k) unsupported(ff, "this HEMLForceField (its parameters are not the ones the device step knows)");
-    s.springs = k->isSet();
-    if (s.springs) return;  // (HEMLForceField refuses a material and a Prony series in this mode)
-    const size_t nT = ff.tetrahedra() ? ff.tetrahedra()->size() : 0;
-    const MeshData* mesh = meshOf(ff);
-    const std::vector<const materials::BaseMaterial*> cell = readGroups(ff, mesh, nT, 0, s);
-    readFibres(ff, mesh, cell, nT, s);
-    readSeries(ff, s);
-    if (s.series.size() > 1) unsupported(*s.series[1].prony, "a second ViscoelasticProny beside a HEMLForceField (it takes one)");
+/// The element force field's device form (elements/DeviceForm.h) checked against what the device
+/// step runs: the form of its elements (TLED's, or HEML's edge form or its mass-spring mode, which
+/// has no material and no series), J0, a material per group or one for all, fibre directions per
+/// material or per element, its Prony series (HEMLForceField takes one).
+void readForm(const core::BaseForceField& ff, const elements::DeviceForm& form, StepSetup& s) {
+    s.form = form.kind == elements::DeviceForm::Kind::TLED ? StepSetup::Form::TLED : StepSetup::Form::Edges;
+    s.springs = form.kind == elements::DeviceForm::Kind::Springs;
+    s.J0 = form.J0;
+    s.hourglass = form.hourglass;
+    if (s.springs) return;
+    const size_t nT = form.tetrahedra ? form.tetrahedra->size() : 0, nH = form.hexahedra ? form.hexahedra->size() : 0;
+    if (form.cellMaterial.size() != nT + nH)
+        ff.fail("its device form has " + std::to_string(form.cellMaterial.size()) + " materials for " + std::to_string(nT + nH) + " cells");
+    readGroups(ff, form, nT, s);
+    // (HEML's edge form: its fibres are in its rest data, w = V^-1 a0)
+    if (s.form == StepSetup::Form::TLED) readFibres(form, nT, nH, s);
+    readSeries(form, s);
+    if (s.form == StepSetup::Form::Edges && s.series.size() > 1)
+        unsupported(*s.series[1].prony, "a second ViscoelasticProny beside a HEMLForceField (it takes one)");
 }
 
 /// The faces of the SurfacePressure components (s.pressures), in their order: node indices, rest
@@ -241,7 +205,7 @@ void pressureFaces(const Positions& X, StepSetup& s) {
 /// loadF), scaled by c(t) in the node kernel.
 void addCurvedLoad(const core::BaseForceField& ff, const core::NodalLoad& load, size_t nNodes, StepSetup& s) {
     if (s.loads.size() == static_cast<size_t>(kMaxLoads))
-        unsupported(ff, "a ConstantForce with a load curve beyond the first " + std::to_string(kMaxLoads) + " (the device step takes " +
+        unsupported(ff, "a " + ff.className() + " with a load curve beyond the first " + std::to_string(kMaxLoads) + " (the device step takes " +
                             std::to_string(kMaxLoads) + ")");
     IndexList nodes;
     Positions F;
@@ -253,112 +217,67 @@ void addCurvedLoad(const core::BaseForceField& ff, const core::NodalLoad& load, 
         for (int i = 0; i < 3; ++i) s.loadF[3 * (k * nNodes + static_cast<size_t>(nodes[j])) + static_cast<size_t>(i)] += F[j][i];
 }
 
-/// Rest geometry of the tetrahedra: dN_a/dX for a = 1..3 (rows of Dm^-1) and the volumes.
-void tetGeometry(const core::BaseForceField& ff, const Positions& X, const Tetrahedra& tets, StepSetup& s) {
-    const elements::TetRest rest = elements::tetRest(ff, X, tets);
+/// The nodes of each element in the rows of StepArrays tet or hex (corner a of element e at a n + e),
+/// each checked against the state's nodes.
+template <size_t NN>
+void connectivity(const core::BaseForceField& ff, const std::vector<std::array<int, NN>>& elements, size_t nNodes, const char* kind,
+                  std::vector<int>& out) {
+    const size_t n = elements.size();
+    out.resize(NN * n);
+    for (size_t e = 0; e < n; ++e)
+        for (size_t a = 0; a < NN; ++a) {
+            const int node = elements[e][a];
+            if (node < 0 || static_cast<size_t>(node) >= nNodes) ff.fail(std::string(kind) + " " + std::to_string(e) + " has a node out of range");
+            out[a * n + e] = node;
+        }
+}
+
+/// The values of a device form's array (per values for each of n elements, element by element)
+/// into the rows of a StepArrays array (value r of element e at r n + e).
+void toRows(const std::vector<double>& a, size_t per, size_t n, std::vector<double>& out) {
+    out.resize(per * n);
+    for (size_t e = 0; e < n; ++e)
+        for (size_t r = 0; r < per; ++r) out[r * n + e] = a[per * e + r];
+}
+
+/// The rest data of TLED's tetrahedra from its device form: dN_a/dX for a = 1..3 (the rows of
+/// Dm^-1) and the volumes, as TLEDForceField's precompute computed them (TLEDElements.cpp).
+void tetGeometry(const core::BaseForceField& ff, const elements::DeviceForm& form, const Tetrahedra& tets, size_t nNodes, StepSetup& s) {
     const size_t n = tets.size();
-    s.tet.resize(4 * n);
-    s.dN.resize(9 * n);
-    s.vol = rest.volume;
-    for (size_t e = 0; e < n; ++e) {
-        for (int a = 0; a < 4; ++a) s.tet[static_cast<size_t>(a) * n + e] = tets[e][static_cast<size_t>(a)];
-        for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < 3; ++i) s.dN[static_cast<size_t>(3 * a + i) * n + e] = rest.DmInv[e](a, i);
-    }
+    connectivity(ff, tets, nNodes, "tetrahedron", s.tet);
+    toRows(sized(ff, form.tetDN, 9, n, "tetrahedron dN/dX"), 9, n, s.dN);
+    s.vol = sized(ff, form.tetVolume, 1, n, "tetrahedron volumes");
 }
 
-/// The fibre direction w (0: a0, 1: b0) of each tetrahedron: its own (StepSetup fa, fb) or its
-/// material group's.
-std::vector<Vec3> tetFibres(const StepSetup& s, int w, size_t n) {
-    std::vector<Vec3> dir(n, Vec3::Zero());
-    for (const StepSetup::Group& g : s.groups) {
-        const elements::Vec33<double>& d = w == 0 ? g.a0 : g.b0;
-        const Vec3 v(d.x, d.y, d.z);
-        if (g.tets.empty() && s.groups.size() == 1) std::fill(dir.begin(), dir.end(), v);
-        for (int e : g.tets) dir[static_cast<size_t>(e)] = v;
-    }
-    const std::vector<double>& own = w == 0 ? s.fa : s.fb;
-    if (s.fibresPerElement && !own.empty())
-        for (size_t e = 0; e < n; ++e) dir[e] = Vec3(own[e], own[n + e], own[2 * n + e]);
-    return dir;
-}
-
-/// Rest geometry of HEML's tetrahedra (StepSetup::Form::Edges, HEMLForceField.cpp precompute):
-/// the rest edges, 1 / det V, G and the volumes (elements::edgeRest), V^-1 a0 and V^-1 b0 where a
-/// material reads them; in mass-spring mode each edge's share of the stiffness and rest length.
-void edgeGeometry(const core::BaseForceField& ff, const Positions& X, const Tetrahedra& tets, StepSetup& s) {
+/// The rest data of HEML's tetrahedra from its device form (StepSetup::Form::Edges, as
+/// HEMLForceField's precompute computed them, HEMLForceField.cpp): the rest edges, 1 / det V, G and
+/// the volumes (elements::edgeRest), V^-1 a0 and V^-1 b0 where a material reads them; in
+/// mass-spring mode each edge's share of the stiffness and rest length.
+void edgeGeometry(const core::BaseForceField& ff, const elements::DeviceForm& form, const Tetrahedra& tets, size_t nNodes, StepSetup& s) {
     const size_t n = tets.size();
-    s.tet.resize(4 * n);
-    s.vol.resize(n);
-    s.eV.resize(9 * n);
-    s.eInvDetV.resize(n);
-    bool uses[2] = {false, false};
-    for (const StepSetup::Group& g : s.groups)
-        for (int w = 0; w < 2; ++w) uses[w] |= (g.material->uses() & (w == 0 ? materials::BaseMaterial::UsesI4 : materials::BaseMaterial::UsesI6)) != 0;
-    const std::vector<Vec3> dir[2] = {uses[0] ? tetFibres(s, 0, n) : std::vector<Vec3>{}, uses[1] ? tetFibres(s, 1, n) : std::vector<Vec3>{}};
-    s.eG.assign(s.springs ? 0 : 6 * n, 0.0);
-    s.ew4.assign(uses[0] ? 3 * n : 0, 0.0);
-    s.ew6.assign(uses[1] ? 3 * n : 0, 0.0);
-    s.ekk.assign(s.springs ? 6 * n : 0, 0.0);
-    s.elen0.assign(s.springs ? 6 * n : 0, 0.0);
-    const auto* k = paramOf<core::Param<double>>(ff, "stiffness");
-    const elements::EdgeShares shares(s.springs ? tets : Tetrahedra{});
-    for (size_t e = 0; e < n; ++e) {
-        const auto& t = tets[e];
-        for (size_t a = 0; a < 4; ++a) {
-            if (t[a] < 0 || static_cast<size_t>(t[a]) >= X.size()) ff.fail("tetrahedron " + std::to_string(e) + " has a node out of range");
-            s.tet[a * n + e] = t[a];
-        }
-        const elements::EdgeRest r = elements::edgeRest(X[size_t(t[0])], X[size_t(t[1])], X[size_t(t[2])], X[size_t(t[3])]);
-        s.vol[e] = std::abs(r.det) / 6.0;
-        s.eInvDetV[e] = 1.0 / r.det;
-        for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < 3; ++i) s.eV[static_cast<size_t>(3 * a + i) * n + e] = r.V(i, a);
-        for (int q = 0; q < 6 && !s.springs; ++q) s.eG[static_cast<size_t>(q) * n + e] = r.G[q];
-        for (int w = 0; w < 2; ++w) {
-            if (!uses[w]) continue;
-            const Vec3 v = r.Vi * dir[w][e];
-            for (int i = 0; i < 3; ++i) (w == 0 ? s.ew4 : s.ew6)[static_cast<size_t>(i) * n + e] = v[i];
-        }
-        for (int q = 0; q < 6 && s.springs; ++q) {
-            const int a = t[static_cast<size_t>(elements::edgeA(q))], b = t[static_cast<size_t>(elements::edgeB(q))];
-            s.elen0[static_cast<size_t>(q) * n + e] = (X[size_t(b)] - X[size_t(a)]).norm();
-            s.ekk[static_cast<size_t>(q) * n + e] = k->get() / shares.count(a, b);
-        }
+    connectivity(ff, tets, nNodes, "tetrahedron", s.tet);
+    s.vol = sized(ff, form.tetVolume, 1, n, "tetrahedron volumes");
+    toRows(sized(ff, form.edgeV, 9, n, "rest edges"), 9, n, s.eV);
+    s.eInvDetV = sized(ff, form.edgeInvDetV, 1, n, "1 / det V");
+    toRows(sized(ff, form.edgeG, s.springs ? 0 : 6, n, "G"), 6, s.springs ? 0 : n, s.eG);
+    for (int w = 0; w < 2; ++w) {
+        const std::vector<double>& a = form.edgeW[w];
+        if (!a.empty()) toRows(sized(ff, a, 3, n, "V^-1 a0 or V^-1 b0"), 3, n, w == 0 ? s.ew4 : s.ew6);
     }
-    s.fa.clear();  // (in ew4, ew6 now: the edge form does not read the directions themselves)
-    s.fb.clear();
+    toRows(sized(ff, form.springK, s.springs ? 6 : 0, n, "spring stiffnesses"), 6, s.springs ? n : 0, s.ekk);
+    toRows(sized(ff, form.springLength, s.springs ? 6 : 0, n, "spring rest lengths"), 6, s.springs ? n : 0, s.elen0);
 }
 
-/// Rest geometry of the hexahedra: the uniform-strain dN_a/dX, volumes, hourglass vectors c_q and
-/// stiffnesses K (of each element's material), as TLEDForceField computes them
-/// (plugins/tled/TLEDElements.cpp).
-void hexGeometry(const core::BaseForceField& ff, const Positions& X, const Hexahedra& hexes, StepSetup& s) {
+/// The rest data of TLED's hexahedra from its device form: the uniform-strain dN_a/dX, volumes,
+/// hourglass vectors c_q and stiffnesses K (of each element's material), as TLEDForceField's
+/// precompute computed them (TLEDElements.cpp).
+void hexGeometry(const core::BaseForceField& ff, const elements::DeviceForm& form, const Hexahedra& hexes, size_t nNodes, StepSetup& s) {
     const size_t n = hexes.size();
-    std::vector<const materials::BaseMaterial*> material(n, n > 0 ? s.groups.front().material : nullptr);
-    for (const StepSetup::Group& g : s.groups)
-        for (int e : g.hexes) material[static_cast<size_t>(e)] = g.material;
-    s.hex.resize(8 * n);
-    s.hdN.resize(24 * n);
-    s.hgC.resize(12 * n);
-    s.hvol.resize(n);
-    s.hgK.resize(n);
-    for (size_t e = 0; e < n; ++e) {
-        Vec3 P[8];
-        for (size_t a = 0; a < 8; ++a) {
-            const int node = hexes[e][a];
-            if (node < 0 || static_cast<size_t>(node) >= X.size()) ff.fail("hexahedron " + std::to_string(e) + " has a node out of range");
-            P[a] = X[static_cast<size_t>(node)];
-            s.hex[a * n + e] = node;
-        }
-        double V, dN[24], sumDN2, c[12];
-        elements::hexUniformStrain(P, V, dN, sumDN2);
-        elements::hexHourglassVectors(P, c);
-        for (size_t r = 0; r < 24; ++r) s.hdN[r * n + e] = dN[r];
-        for (size_t r = 0; r < 12; ++r) s.hgC[r * n + e] = c[r];
-        s.hvol[e] = std::abs(V);
-        s.hgK[e] = elements::hexHourglassStiffness(s.hourglass, *material[e], s.hvol[e], sumDN2);
-    }
+    connectivity(ff, hexes, nNodes, "hexahedron", s.hex);
+    toRows(sized(ff, form.hexDN, 24, n, "hexahedron dN/dX"), 24, n, s.hdN);
+    toRows(sized(ff, form.hexC, 12, n, "hourglass vectors"), 12, n, s.hgC);
+    s.hvol = sized(ff, form.hexVolume, 1, n, "hexahedron volumes");
+    s.hgK = sized(ff, form.hexK, 1, n, "hourglass stiffnesses");
 }
 
 /// The hold codes of the nodes' axes (StepArrays::hold), the constraints in their order so that the
@@ -380,6 +299,44 @@ void holdCodes(const core::MechanicalGroup& g, StepSetup& s) {
                 }
             }
     }
+}
+
+/// The group's force fields, each by the role it gives: the element force field's device form
+/// (elements::DeviceFormSource: TLEDForceField, HEMLForceField), read into s (readForm) and
+/// returned; the loads' terms (core::NodalLoad: ConstantForce, its force added once to s.ext
+/// without a load curve, else a load array of its own; core::PressureLoad: SurfacePressure). Any
+/// other force field, a second element force field or none is a located error.
+elements::DeviceForm readForceFields(const core::Component& owner, const core::MechanicalGroup& g, StepSetup& s) {
+    core::BaseMechanicalState& state = *g.state;
+    const size_t nNodes = state.size();
+    core::BaseForceField*& elastic = s.elastic;  // the element force field
+    elements::DeviceForm form;
+    Positions ext(nNodes, Vec3::Zero());
+    for (core::BaseForceField* ff : g.forceFields) {
+        if (const auto* source = dynamic_cast<const elements::DeviceFormSource*>(ff)) {
+            if (elastic) unsupported(*ff, "a second element force field (" + ff->className() + " beside " + elastic->className() + ") on one state");
+            elastic = ff;
+            source->deviceForm(form);
+            readForm(*ff, form, s);
+        } else if (const auto* load = dynamic_cast<const core::NodalLoad*>(ff)) {
+            if (!load->curved()) ff->addForce(state, ext, 0.0);  // constant: its force once, summed with the others
+            else addCurvedLoad(*ff, *load, nNodes, s);
+        } else if (const auto* p = dynamic_cast<const core::PressureLoad*>(ff)) {
+            if (s.pressures.size() == static_cast<size_t>(kMaxPressures))
+                unsupported(*ff, "a " + ff->className() + " beyond the first " + std::to_string(kMaxPressures) + " on one body");
+            s.pressures.push_back(p);
+        } else {
+            unsupported(*ff, ff->className() + " (a force field that gives neither its device form, elements::DeviceFormSource, nor its "
+                                               "load's terms, core::NodalLoad or core::PressureLoad)");
+        }
+    }
+    if (!elastic)
+        owner.fail("the state '" + state.path() + "' has no element force field with a device form (TLEDForceField, HEMLForceField): the device "
+                   "step runs those only");
+    s.ext.resize(3 * nNodes);
+    for (size_t i = 0; i < nNodes; ++i)
+        for (int c = 0; c < 3; ++c) s.ext[3 * i + static_cast<size_t>(c)] = ext[i][c];
+    return form;
 }
 
 } // namespace
@@ -421,53 +378,28 @@ StepSetup buildStepSetup(const core::Component& owner, const core::MechanicalGro
     StepSetup s;
     core::BaseMechanicalState& state = *g.state;
     readIntegrator(*g.integrator, s);
-    core::BaseForceField*& elastic = s.elastic;  // the element force field: TLED or HEML
     const size_t nNodes = state.size();
-    s.ext.assign(3 * nNodes, 0.0);
-    Positions ext(nNodes, Vec3::Zero());
-    for (core::BaseForceField* ff : g.forceFields) {
-        if (ff->className() == "TLEDForceField" || ff->className() == "HEMLForceField") {
-            if (elastic) unsupported(*ff, "a second element force field (" + ff->className() + " beside " + elastic->className() + ") on one state");
-            elastic = ff;
-            if (ff->className() == "TLEDForceField") readTLED(*ff, s);
-            else readHEML(*ff, s);
-        } else if (ff->className() == "ConstantForce") {
-            const auto* c = ff->findParam("curve");
-            const auto* load = dynamic_cast<const core::NodalLoad*>(ff);
-            if (!c || !c->isSet()) ff->addForce(state, ext, 0.0);  // constant: its force once, summed with the others
-            else if (load) addCurvedLoad(*ff, *load, nNodes, s);
-            else unsupported(*ff, "this ConstantForce with a load curve (it does not give its load's terms, core::NodalLoad)");
-        } else if (ff->className() == "SurfacePressure") {
-            const auto* p = dynamic_cast<const core::PressureLoad*>(ff);
-            if (!p) unsupported(*ff, "this SurfacePressure (it does not give its faces, core::PressureLoad)");
-            if (s.pressures.size() == static_cast<size_t>(kMaxPressures))
-                unsupported(*ff, "a SurfacePressure beyond the first " + std::to_string(kMaxPressures) + " on one body");
-            s.pressures.push_back(p);
-        } else {
-            unsupported(*ff, ff->className());
-        }
-    }
-    if (!elastic) owner.fail("the state '" + state.path() + "' has no TLEDForceField or HEMLForceField: the device step runs those only");
+    const elements::DeviceForm form = readForceFields(owner, g, s);
     for (const core::BaseConstraint* c : g.constraints)
-        if (c->className() != "FixedConstraint" && c->className() != "PrescribedDisplacement") unsupported(*c, c->className());
+        if (!dynamic_cast<const core::AxisHold*>(c))
+            unsupported(*c, c->className() + " (the device step holds axes of nodes, FixedConstraint and PrescribedDisplacement: a constraint "
+                                             "that gives its terms, core::AxisHold)");
     const Tetrahedra noTets;
     const Hexahedra noHexes;
-    const Tetrahedra& tets = elastic->tetrahedra() ? *elastic->tetrahedra() : noTets;
-    const Hexahedra& hexes = elastic->hexahedra() ? *elastic->hexahedra() : noHexes;
+    const Tetrahedra& tets = form.tetrahedra ? *form.tetrahedra : noTets;
+    const Hexahedra& hexes = form.hexahedra ? *form.hexahedra : noHexes;
     // (the slots hold 8 e + a in 32 bits; every array index stays below 2^31)
     if (nNodes >= (size_t(1) << 29) || tets.size() + hexes.size() >= (size_t(1) << 26))
         owner.fail("the mesh is too large for the device step's 32-bit indices");
     if (6 * static_cast<size_t>(s.pronyTerms()) * std::max(tets.size(), hexes.size()) >= (size_t(1) << 31))
         owner.fail("the mesh is too large for the device step's 32-bit indices of its " + std::to_string(s.pronyTerms()) +
                    " Prony terms' states (6 per term and element)");
-    for (size_t i = 0; i < nNodes; ++i)
-        for (int c = 0; c < 3; ++c) s.ext[3 * i + static_cast<size_t>(c)] = ext[i][c];
     s.nNodes = static_cast<int>(nNodes);
     s.nTets = static_cast<int>(tets.size());
     s.nHexes = static_cast<int>(hexes.size());
-    if (s.form == StepSetup::Form::TLED) tetGeometry(*elastic, state.x0(), tets, s);
-    else edgeGeometry(*elastic, state.x0(), tets, s);
-    hexGeometry(*elastic, state.x0(), hexes, s);
+    if (s.form == StepSetup::Form::TLED) tetGeometry(*s.elastic, form, tets, nNodes, s);
+    else edgeGeometry(*s.elastic, form, tets, nNodes, s);
+    hexGeometry(*s.elastic, form, hexes, nNodes, s);
     pressureFaces(state.x0(), s);
     if (tets.size() + hexes.size() + s.tri.size() / 3 + s.quad.size() / 4 >= (size_t(1) << 26))
         owner.fail("the mesh and its faces under pressure are too many for the device step's 32-bit slots");

@@ -1,12 +1,13 @@
 #pragma once
 #include "NodeSelection.h"
+#include "fascia/sim/StepTerms.h"
 
 namespace fascia::mechanics {
 
 /// What FixedConstraint and PrescribedDisplacement share: selected nodes follow x = X + offset(t)
 /// and v = rate(t) along the masked axes, and their force along those axes is removed (the group
-/// records it as the reaction).
-class AxisConstraint : public core::BaseConstraint {
+/// records it as the reaction): a core::AxisHold, which a step backend runs from its nodes and axes.
+class AxisConstraint : public core::BaseConstraint, public core::AxisHold {
 public:
     void init() override;
     void projectPositions(core::BaseMechanicalState& s, double t) override;

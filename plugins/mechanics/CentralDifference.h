@@ -14,9 +14,11 @@ namespace fascia::mechanics {
 /// (1 + alpha dt/2) z^2 - (2 - omega^2 dt^2) z + (1 - alpha dt/2) has its roots inside the unit circle
 /// iff omega dt < 2, with any damping alpha >= 0 (Jury conditions): the force fields' critical step is
 /// its limit (the BaseIntegrator default of stableTimeStep).
-class CentralDifference : public DampedIntegrator {
+class CentralDifference : public DampedIntegrator, public core::ExplicitScheme {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
+    /// Its update and damping, for a step backend (fascia/sim/StepTerms.h).
+    Terms schemeTerms() const override { return {Update::CentralDifference, m_damping.get(), true}; }
     /// Per state: x(n-1), the dt it is for and the steps taken since the (re)start.
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;

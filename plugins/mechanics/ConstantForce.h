@@ -17,6 +17,7 @@ public:
     void restoreState(core::StateReader& in) override;
     void unscaledLoad(IndexList& nodes, Positions& forces) const override;
     double loadFactor(double t) const override { return m_curve.value(t); }
+    bool curved() const override { return m_curve.isSet(); }
 
     NodeSelection m_select{this};
     core::Param<Vec3> m_force{this, core::ParamSpec("force").unit("N").help("force applied to each selected node")};

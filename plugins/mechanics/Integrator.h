@@ -2,6 +2,7 @@
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 #include "fascia/sim/Mechanics.h"
+#include "fascia/sim/StepTerms.h"
 #include "fascia/sim/ThreadedStep.h"
 
 #include <string>

@@ -20,9 +20,11 @@ namespace fascia::mechanics {
 /// polynomial z^2 - (2 - alpha dt - omega^2 dt^2) z + (1 - alpha dt), stable (Jury conditions) iff
 /// alpha dt < 2 and 4 - 2 alpha dt - omega^2 dt^2 > 0, i.e. dt < 4 / (alpha + sqrt(alpha^2 + 4 omega^2)):
 /// 2 / omega without damping (central difference's limit), smaller with it.
-class SemiImplicitEuler : public DampedIntegrator {
+class SemiImplicitEuler : public DampedIntegrator, public core::ExplicitScheme {
 public:
     void step(core::MechanicalGroup& g, double t, double dt) override;
+    /// Its update, damping and start, for a step backend (fascia/sim/StepTerms.h).
+    Terms schemeTerms() const override { return {Update::SemiImplicitEuler, m_damping.get(), m_halfStepStart.get()}; }
     /// 4 / (alpha + sqrt(alpha^2 + 4 omega_max^2)) with omega_max = 2 / critical; critical itself
     /// without damping.
     double stableTimeStep(double critical, std::string& why) const override;

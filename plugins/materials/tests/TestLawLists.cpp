@@ -59,7 +59,29 @@ std::set<std::string> dictionaryEntries(const std::string& dict) {
     return out;
 }
 
+/// The section of docs/materials.md whose "### " heading names `law` (up to the next heading).
+std::string sectionOf(const std::string& md, const std::string& law) {
+    std::istringstream in(md);
+    std::string out;
+    bool inside = false;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("#", 0) == 0) inside = line.rfind("### ", 0) == 0 && headingWords(line).count(law) == 1;
+        if (inside) out += line + "\n";
+    }
+    return out;
+}
+
 } // namespace
+
+TEST_CASE("every built-in law's section in docs/materials.md gives the energy the code computes", "[materials][docs]") {
+    const std::string md = readSource("docs/materials.md");
+    materials::forEachBuiltinMaterial([&](auto* tag) {
+        using M = std::decay_t<decltype(*tag)>;
+        CAPTURE(M::kName);
+        // "W = " and the law's parts' kEnergy joined (ComposedLaw::energy), as --describe prints it
+        CHECK_THAT(sectionOf(md, M::kName), Catch::Contains("W = " + M::LawType::energy()));
+    });
+}
 
 TEST_CASE("every built-in law has its section in docs/materials.md", "[materials][docs]") {
     const std::set<std::string> sections = headingWords(readSource("docs/materials.md"));

@@ -1,4 +1,4 @@
-// The three laws added for issue 12 (HolzapfelGasserOgden, ArrudaBoyce, UncoupledMooneyRivlin) and
+// The laws beyond the papers' (HolzapfelGasserOgden, ArrudaBoyce, UncoupledMooneyRivlin, Gent) and
 // the libm-free exponential they need: fastExp against std::exp; law-level conformance; energies
 // against W computed here from F with Eigen and std:: functions; closed-form stresses (principal
 // stretches, simple shear, pure dilatation) at law level and through TLEDForceField and

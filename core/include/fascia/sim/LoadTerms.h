@@ -17,6 +17,9 @@ public:
     virtual void unscaledLoad(IndexList& nodes, Positions& forces) const = 0;
     /// The load factor c(t) at time t (s): 1 without a curve.
     virtual double loadFactor(double t) const = 0;
+    /// Whether c(t) may change with time; false when it is 1 at all times (no load curve), so that
+    /// a backend may add the load once to its constant external force. Default: true.
+    virtual bool curved() const { return true; }
 };
 
 /// A follower pressure c(t) p on boundary faces (SurfacePressure): each triangle carries -p A n, a

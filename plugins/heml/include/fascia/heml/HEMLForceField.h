@@ -50,6 +50,7 @@
 /// threads. No libm call and no pow in the loop (materials::invCbrt, fastLog). Built-in laws run an
 /// inlined, vectorised loop (dispatch once per block on Material<Law>); other materials are
 /// evaluated by one virtual call per 16 elements.
+#include "fascia/elements/DeviceForm.h"
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/elements/StagedForceField.h"
 #include "fascia/elements/TetMesh.h"
@@ -66,7 +67,7 @@ class ViscoelasticProny;
 
 namespace fascia::heml {
 
-class HEMLForceField : public elements::StagedForceField, public viscoelastic::ElementHistory {
+class HEMLForceField : public elements::StagedForceField, public viscoelastic::ElementHistory, public elements::DeviceFormSource {
 public:
     HEMLForceField();
     ~HEMLForceField() override;
@@ -111,6 +112,9 @@ public:
     /// backend's clock (Yh: none, HEML has no hexahedra).
     void adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) override;
     const Tetrahedra* tetrahedra() const override { return &m_tets; }
+    /// Its tetrahedra, materials, series and rest data for a step backend (elements/DeviceForm.h),
+    /// from the slots of its precompute back in input order (HEMLDeviceForm.cpp).
+    void deviceForm(elements::DeviceForm& out) const override;
 
     /// f += forces at positions x; x and f hold 3 doubles per node in the state's order (a
     /// Positions array's data()), with the viscous history of the last addForce, not advanced.

@@ -6,7 +6,8 @@
 ///   - the registration of the materials plugin (MaterialsPlugin.cpp: --list, --describe, with the
 ///     description built by materialDescription from the law's parts);
 ///   - the scene dump (tests/regression/SceneDump.cpp), the fuzz dictionary check and the
-///     materials doc check (plugins/materials/tests/TestLawLists.cpp);
+///     materials doc checks (a section per law, with the energy the code computes:
+///     plugins/materials/tests/TestLawLists.cpp);
 ///   - the inlined element loops of HEMLForceField and TLEDForceField (fascia/elements/LawDispatch.h);
 ///   - the test factories and conformance sweeps (createBuiltinMaterial, forEachBuiltinMaterial).
 /// Adding a built-in law: one header with its law struct and component (see docs/design.md, "how to

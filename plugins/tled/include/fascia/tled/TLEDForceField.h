@@ -63,6 +63,7 @@
 /// works in that order internally; the state's order is unchanged. Where the ranges stay wide (large
 /// meshes: a block's range is about a plane of the mesh) each buffer holds instead one row per node
 /// its elements use (nodeBuffers="auto").
+#include "fascia/elements/DeviceForm.h"
 #include "fascia/elements/GroupMaterials.h"
 #include "fascia/elements/StagedForceField.h"
 #include "fascia/materials/Material.h"
@@ -79,7 +80,7 @@ class ViscoelasticProny;
 
 namespace fascia::tled {
 
-class TLEDForceField : public elements::StagedForceField, public viscoelastic::ElementHistory {
+class TLEDForceField : public elements::StagedForceField, public viscoelastic::ElementHistory, public elements::DeviceFormSource {
 public:
     TLEDForceField();
     ~TLEDForceField() override;
@@ -126,6 +127,9 @@ public:
     /// The Prony states as a step backend advanced them (viscoelastic/ElementHistory.h), into the
     /// batch slots of its series, both the committed and the current ones, and the backend's clock.
     void adoptHistory(const std::vector<double>& Yt, const std::vector<double>& Yh, const viscoelastic::HistoryClock& clock) override;
+    /// Its elements, materials, fibres, series and rest data for a step backend (elements/DeviceForm.h),
+    /// unpacked from the packed rows of its precompute (TLEDDeviceForm.cpp).
+    void deviceForm(elements::DeviceForm& out) const override;
 
     /// Second Piola-Kirchhoff stress of every element (6 per element, xx yy zz xy yz xz, cell order)
     /// as addForce() at time t would compute it, viscous history included, without advancing it.
