@@ -104,8 +104,8 @@ TEST_CASE("A plugin built for another ABI is refused with what to do", "[PluginM
     REQUIRE(e);
     CHECK(e->kind() == ErrorKind::Input);
     CHECK(std::string(e->what()) == "s.xml:4: error: plugin '" + file +
-                                        "' was built for ABI 999, this is ABI 6: rebuild it against Fascia " FASCIA_VERSION_TEXT);
-    CHECK(FASCIA_ABI_VERSION == 6);
+                                        "' was built for ABI 999, this is ABI 7: rebuild it against Fascia " FASCIA_VERSION_TEXT);
+    CHECK(FASCIA_ABI_VERSION == 7);
     CHECK(Snapshot() == before);
     CHECK(loaded("fascia.test.abi") == nullptr);
     // refused again, not half-loaded

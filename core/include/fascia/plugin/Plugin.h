@@ -12,7 +12,9 @@
 ///    MechanicalGroup::firstBadStep.
 /// 6: PluginInfo::build (how the plugin was compiled), EIGEN_MAX_ALIGN_BYTES fixed at 16, core::Error
 ///    holds the further errors of a scene (more(), unshown(): its size changed).
-#define FASCIA_ABI_VERSION 6
+/// 7: NodalLoad::curved (a new virtual function), the step terms ExplicitScheme and AxisHold
+///    (sim/StepTerms.h), core::formatNumber, core::invCbrt and fastLog (base/FastMath.h).
+#define FASCIA_ABI_VERSION 7
 
 namespace fascia::core {
 
