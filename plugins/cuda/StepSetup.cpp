@@ -17,18 +17,19 @@ namespace fascia::cuda {
 
 namespace {
 
+/// The message of a component the device step does not run: what, and why nothing falls back.
+std::string notOnDevice(const std::string& what) {
+    return what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
+                  "fallback to the host)";
+}
+
 [[noreturn]] void unsupported(const core::Component& c, const std::string& what) {
-    c.fail(what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
-                  "fallback to the host)",
-           {"remove CudaStep to run this scene on the CPU"});
+    c.fail(notOnDevice(what), {"remove CudaStep to run this scene on the CPU"});
 }
 
 /// The same located at c's parameter p.
 [[noreturn]] void unsupported(const core::Component& c, const core::BaseParam& p, const std::string& what) {
-    c.fail(p,
-           what + " is not on the GPU step yet (CudaStep in the root node runs the whole step on the device, with no "
-                  "fallback to the host)",
-           {"remove CudaStep to run this scene on the CPU"});
+    c.fail(p, notOnDevice(what), {"remove CudaStep to run this scene on the CPU"});
 }
 
 /// The integrator's scheme and its parameters (core::ExplicitScheme, fascia/sim/StepTerms.h):
@@ -250,7 +251,7 @@ void tetGeometry(const core::BaseForceField& ff, const elements::DeviceForm& for
 }
 
 /// The rest data of HEML's tetrahedra from its device form (StepSetup::Form::Edges, as
-/// HEMLForceField's precompute computed them, HEMLForceField.cpp): the rest edges, 1 / det V, G and
+/// HEMLForceField's precompute computed them, HEMLElements.cpp): the rest edges, 1 / det V, G and
 /// the volumes (elements::edgeRest), V^-1 a0 and V^-1 b0 where a material reads them; in
 /// mass-spring mode each edge's share of the stiffness and rest length.
 void edgeGeometry(const core::BaseForceField& ff, const elements::DeviceForm& form, const Tetrahedra& tets, size_t nNodes, StepSetup& s) {

@@ -36,8 +36,9 @@ std::set<std::string> headingWords(const std::string& md) {
     std::istringstream in(md);
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("### ", 0) != 0) continue;
+        const std::string names = line.substr(4, line.find('(', 4) - 4);  // (npos - 4: to the end)
         std::string word;
-        for (char c : line.substr(4, line.find('(') == std::string::npos ? std::string::npos : line.find('(') - 4) + " ") {
+        for (char c : names + " ") {
             if (std::isalnum(static_cast<unsigned char>(c))) word += c;
             else if (!word.empty()) out.insert(word), word.clear();
         }
