@@ -11,7 +11,10 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SCENE ?= scenes/heml/abdomen.xml
 # FASCIA_WITH_VTK=OFF builds without VTK (no .vtk/.vtu reader, no VTKExporter) and does not install it
 FASCIA_WITH_VTK ?= ON
-DEBIAN_PACKAGES := build-essential cmake pkgconf libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev) $(EXTRA_PACKAGES)
+# FASCIA_WITH_PYTHON=OFF builds without the Python module (docs/python.md) and does not install its packages
+FASCIA_WITH_PYTHON ?= ON
+PYTHON_PACKAGES := python3-dev pybind11-dev python3-numpy python3-pytest python3-distributed python3-pandas python3-meshio python3-tqdm python3-matplotlib
+DEBIAN_PACKAGES := build-essential cmake pkgconf libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev) $(if $(filter ON,$(FASCIA_WITH_PYTHON)),$(PYTHON_PACKAGES)) $(EXTRA_PACKAGES)
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TIMEOUT ?= 30
@@ -33,7 +36,7 @@ deps:
 	fi
 
 configure: deps
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK)
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DFASCIA_WITH_VTK=$(FASCIA_WITH_VTK) -DFASCIA_WITH_PYTHON=$(FASCIA_WITH_PYTHON)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)

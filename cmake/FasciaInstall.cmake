@@ -32,7 +32,7 @@ endforeach()
 
 # scenes (with their meshes), the examples' sources, the docs and the README: share/fascia
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_SOURCE_DIR}/docs DESTINATION ${FASCIA_DATA_SUBDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples DESTINATION ${FASCIA_DATA_SUBDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples DESTINATION ${FASCIA_DATA_SUBDIR} PATTERN "__pycache__" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${FASCIA_DATA_SUBDIR})
 
 # pkg-config, relocatable: the prefix is found from the .pc file's own folder (install folders

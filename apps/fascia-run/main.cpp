@@ -110,34 +110,11 @@ int listComponents() {
 
 int describe(const std::string& name) {
     PluginManager::instance().loadDefaultPlugins();
-    const auto& reg = Registry::instance();
-    auto* e = reg.find(name);
-    if (!e) {
-        std::cerr << "fascia-run: no component '" << name << "'";
-        auto close = closestMatches(name, reg.names());
-        if (!close.empty()) std::cerr << "; did you mean '" << close[0] << "'?";
-        std::cerr << "\n";
+    try {
+        std::cout << describeComponent(name);
+    } catch (const Error& e) {
+        std::cerr << "fascia-run: " << e.message() << "\n";
         return 2;
-    }
-    auto c = reg.create(name);
-    std::cout << name << " (plugin " << (e->plugin.empty() ? "core" : e->plugin) << "): " << e->description << "\n\n";
-    std::cout << "parameters:\n";
-    for (BaseParam* p : c->params()) {
-        const auto& s = p->spec();
-        std::cout << "  " << p->name() << "  [" << p->typeName();
-        if (!s.unitText.empty()) std::cout << ", " << s.unitText;
-        std::cout << "]";
-        if (s.isRequired) std::cout << " required";
-        else if (s.isOutput) std::cout << " output (link to it with \"@" << "name." << p->name() << "\")";
-        else {
-            auto d = p->defaultText();
-            if (d.size() > 40) d = d.substr(0, 37) + "...";
-            std::cout << " default: " << (d.empty() ? "(none)" : d);
-        }
-        auto r = s.rangeText();
-        if (!r.empty()) std::cout << "  range: " << r;
-        std::cout << "\n";
-        if (!s.helpText.empty()) std::cout << "      " << s.helpText << "\n";
     }
     return 0;
 }

@@ -1,5 +1,7 @@
 #include "fascia/plugin/Registry.h"
 
+#include <sstream>
+
 namespace fascia::core {
 
 Registry& Registry::instance() {
@@ -56,6 +58,37 @@ void Registry::addKnownElsewhere(const std::string& component, const std::string
 const std::string* Registry::knownElsewhere(const std::string& component) const {
     auto it = m_elsewhere.find(component);
     return it == m_elsewhere.end() ? nullptr : &it->second;
+}
+
+std::string describeComponent(const std::string& name) {
+    const Registry& reg = Registry::instance();
+    const ComponentEntry* e = reg.find(name);
+    if (!e) {
+        const auto close = closestMatches(name, reg.names());
+        throwInputError({}, "no component '" + name + "'" + (close.empty() ? "" : "; did you mean '" + close[0] + "'?"));
+    }
+    auto c = reg.create(name);
+    std::ostringstream out;
+    out << name << " (plugin " << (e->plugin.empty() ? "core" : e->plugin) << "): " << e->description << "\n\n";
+    out << "parameters:\n";
+    for (BaseParam* p : c->params()) {
+        const auto& s = p->spec();
+        out << "  " << p->name() << "  [" << p->typeName();
+        if (!s.unitText.empty()) out << ", " << s.unitText;
+        out << "]";
+        if (s.isRequired) out << " required";
+        else if (s.isOutput) out << " output (link to it with \"@" << "name." << p->name() << "\")";
+        else {
+            auto d = p->defaultText();
+            if (d.size() > 40) d = d.substr(0, 37) + "...";
+            out << " default: " << (d.empty() ? "(none)" : d);
+        }
+        const auto r = s.rangeText();
+        if (!r.empty()) out << "  range: " << r;
+        out << "\n";
+        if (!s.helpText.empty()) out << "      " << s.helpText << "\n";
+    }
+    return out.str();
 }
 
 } // namespace fascia::core

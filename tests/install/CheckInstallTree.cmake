@@ -5,7 +5,8 @@
 #   - no source file (.cpp) and no CMakeLists.txt but the examples' (share/fascia/examples) and the
 #     package's (lib/cmake); no tests/ folder;
 #   - include/ holds headers (.h) only, lib/cmake/ CMake files (.cmake) only, lib/pkgconfig/
-#     fascia.pc only, lib/ otherwise libraries (.so, .so.N..., .a) only, bin/ the programs only
+#     fascia.pc only, lib/python3.X/dist-packages/fascia the Python package (its .py files and the
+#     extension), lib/ otherwise libraries (.so, .so.N..., .a) only, bin/ the programs only
 #     (fascia-run, fascia-bench);
 #   - share/fascia/ holds the scenes with their meshes, the docs, the examples and the README, and
 #     each of those is there;
@@ -60,6 +61,10 @@ foreach(f ${files})
     if(NOT f MATCHES "\\.cmake$")
       list(APPEND bad "${f}: not a CMake file (lib/cmake/ holds the package only)")
     endif()
+  elseif(f MATCHES "^lib/python3[.0-9]*/dist-packages/fascia/")
+    if(NOT f MATCHES "/fascia/[_a-z]+\\.py$" AND NOT f MATCHES "/fascia/_fascia[^/]*\\.so$")
+      list(APPEND bad "${f}: not a file of the Python package fascia")
+    endif()
   elseif(f MATCHES "^lib/")
     if(NOT f MATCHES "\\.(so(\\.[0-9]+)*|a)$")
       list(APPEND bad "${f}: not a library")
@@ -80,6 +85,19 @@ foreach(f share/fascia/README.md share/fascia/scenes/heml/abdomen.xml share/fasc
     list(APPEND bad "${f}: missing")
   endif()
 endforeach()
+
+# the installed Python package imports from its install folder alone and finds the installed plugins
+file(GLOB _py_dirs LIST_DIRECTORIES true ${prefix}/lib/python3*/dist-packages)
+if(_py_dirs AND EXISTS /usr/bin/python3)
+  list(GET _py_dirs 0 _py_dir)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${_py_dir} /usr/bin/python3 -c
+                          "import fascia, sys; assert fascia.__file__.startswith(sys.argv[1]), fascia.__file__; assert 'HEMLForceField' in fascia.components(); print(fascia.__file__)"
+                          ${_py_dir}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    list(APPEND bad "the installed Python package does not import from ${_py_dir}: ${out}${err}")
+  endif()
+endif()
 
 list(LENGTH files n)
 if(bad)

@@ -50,4 +50,9 @@ private:
     std::string m_currentPlugin, m_currentFile;
 };
 
+/// What `fascia-run --describe NAME` prints (and Python's help() on a component shows): the
+/// component's plugin and description, then each parameter with its type, unit, default or
+/// "required", range and help. An unknown name is an input error with the closest names.
+std::string describeComponent(const std::string& name);
+
 } // namespace fascia::core
