@@ -1,5 +1,6 @@
 #include "InlineMesh.h"
 #include "MeshReaders.h"
+#include "fascia/surface/BoundaryFaces.h"
 
 #include <algorithm>
 #include <sstream>
@@ -60,7 +61,9 @@ void InlineMesh::init() {
         fail(e.message(), e.notes());
     }
     if (report.flippedElements > 0) warn("flipped " + std::to_string(report.flippedElements) + " inverted element(s)");
-    publish(std::move(mesh));
+    m_boundary = surface::boundaryTriangles(mesh);
+    m_mesh.set(std::move(mesh));
+    m_positions.view(&m_mesh.get().points);
 }
 
 } // namespace fascia::meshio

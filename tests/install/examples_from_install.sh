@@ -8,6 +8,7 @@
 #     beams of HEML and TLED alike, the plugin found by FASCIA_PLUGIN_PATH and by a path;
 #   - examples/haptics built for another machine (-march=x86-64) than the library (-march=native):
 #     tool poses and Eigen vectors cross the boundary (the case that crashed in BaseTool::pose());
+#   - examples/python/build_scene.py run with the installed Python package alone (when it is built);
 #   - a program built with pkg-config alone, also for x86-64 (tests/install/AbiProbe.cpp);
 #   - a unit that sees another Eigen alignment is refused at compile time, naming it.
 set -euo pipefail
@@ -32,7 +33,7 @@ for f in $libdir/cmake/Fascia/FasciaConfig.cmake $libdir/cmake/Fascia/FasciaConf
 done
 grep -q "^FASCIA_NATIVE:BOOL=ON" "$build/CMakeCache.txt" && echo "the library is built with -march=native"
 examples=$(cd "$share/examples" && ls -d */ | tr -d / | sort | tr '\n' ' ')
-[ "$examples" = "haptics plugin " ] || fail "share/fascia/examples holds '$examples': give every example its case here"
+[ "$examples" = "haptics plugin python " ] || fail "share/fascia/examples holds '$examples': give every example its case here"
 for e in $examples; do [ -f "$share/examples/$e/README.md" ] || fail "examples/$e has no README.md"; done
 
 step "examples/plugin: configured with no build type and no flags"
@@ -97,6 +98,17 @@ logged build-haptics cmake --build "$work/haptics" -j 2
 logged run-haptics cmake -DDEMO="$work/haptics/fascia-haptics-demo" -DSCENE="$share/scenes/interaction/haptics.xml" \
   -DWORK="$work/out-haptics" -P "$src/tests/haptics/RunHaptics.cmake"
 grep "peak_force_n" "$work/run-haptics.log"
+
+step "examples/python: a scene built in Python, with the installed package alone"
+pydir=$(ls -d "$prefix"/lib/python3*/dist-packages 2>/dev/null | head -n 1 || true)
+if [ -n "$pydir" ] && [ -d "$pydir/fascia" ]; then
+  (cd "$work" && PYTHONPATH="$pydir" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 "$share/examples/python/build_scene.py" \
+     "$work/out-python") > "$work/run-python.log" 2>&1 || { cat "$work/run-python.log"; fail "examples/python/build_scene.py"; }
+  grep -q "t = 0.200 s" "$work/run-python.log" || { cat "$work/run-python.log"; fail "build_scene.py did not run to 0.2 s"; }
+  [ -s "$work/out-python/probe.csv" ] || fail "build_scene.py wrote no probe.csv"
+else
+  echo "(no Python package installed: the module is not built here)"
+fi
 
 step "a program built with pkg-config alone, for x86-64"
 export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig"

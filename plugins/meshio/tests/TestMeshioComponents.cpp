@@ -362,3 +362,37 @@ TEST_CASE("GridMesh parameters are checked", "[GridMesh]") {
     CHECK_THAT(errorOf(grid("element=\"prisms\"")), Contains("scene.xml:2:") && Contains("one of tetrahedra6|tetrahedra5|hexahedra"));
     CHECK_THAT(errorOf(grid("resolution=\"1000 1000 1000\"")), Contains("scene.xml:2:") && Contains("at most 5e7"));
 }
+
+TEST_CASE("InlineMesh takes its points, elements and node groups from the scene, checked as a file's", "[InlineMesh]") {
+    auto scene = [](const std::string& mesh, const std::string& state = "") {
+        return "<Node name=\"root\" dt=\"0.001\">\n" + mesh +
+               "  <MechanicalObject name=\"state\"" + state + "/>\n"
+               "  <LumpedMass density=\"1000\"/>\n"
+               "  <FixedConstraint group=\"base\"/>\n"
+               "  <SemiImplicitEuler/>\n</Node>\n";
+    };
+    const std::string points = "points=\"0 0 0  0.01 0 0  0 0.01 0  0 0 0.01  0.01 0.01 0.01\"";
+    auto sim = Simulation::fromString(scene("  <InlineMesh name=\"m\" " + points +
+                                            " tetrahedra=\"0 1 2 3  1 2 3 4\" nodeGroups=\"base: 2 0 1 1; top: 4\"/>\n",
+                                            " position=\"@m.positions\""));
+    const auto& mesh = dynamic_cast<fascia::core::Param<fascia::MeshData>*>(sim->find("m")->findParam("mesh"))->get();
+    CHECK(sim->state("state").x()[4] == fascia::Vec3(0.01, 0.01, 0.01));
+    CHECK(dynamic_cast<fascia::core::BaseTopology*>(sim->find("m"))->boundaryTriangles().size() == 6);
+    CHECK(mesh.points.size() == 5);
+    CHECK(mesh.tetrahedra.size() == 2);
+    CHECK(mesh.nodeGroups.at("base") == fascia::IndexList{0, 1, 2});  // sorted, unique
+    CHECK(mesh.nodeGroups.at("top") == fascia::IndexList{4});
+    // an inverted element: refused, or flipped with fixOrientation
+    CHECK_THAT(errorOf(scene("  <InlineMesh " + points + " tetrahedra=\"0 2 1 3\"/>\n")), Contains("scene.xml:2:"));
+    auto fixed = Simulation::fromString(scene("  <InlineMesh name=\"m\" " + points +
+                                              " tetrahedra=\"0 2 1 3\" nodeGroups=\"base: 0\" fixOrientation=\"true\"/>\n"));
+    CHECK(dynamic_cast<fascia::core::BaseTopology*>(fixed->find("m"))->meshData().tetrahedra.size() == 1);
+    // a hexahedral one, and the errors of its own parameters
+    CHECK_NOTHROW(Simulation::fromString(scene(
+        "  <InlineMesh points=\"0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\" hexahedra=\"0 1 2 3 4 5 6 7\" nodeGroups=\"base: 0 1 2 3\"/>\n")));
+    CHECK_THAT(errorOf(scene("  <InlineMesh " + points + "/>\n")), Contains("scene.xml:2:") && Contains("no element"));
+    CHECK_THAT(errorOf(scene("  <InlineMesh " + points + " tetrahedra=\"0 1 2 3\" nodeGroups=\"base: 9\"/>\n")),
+               Contains("scene.xml:2:") && Contains("'9' is no node index in [0, 5)"));
+    CHECK_THAT(errorOf(scene("  <InlineMesh " + points + " tetrahedra=\"0 1 2 3\" nodeGroups=\": 1\"/>\n")),
+               Contains("has no name"));
+}
