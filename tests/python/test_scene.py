@@ -132,10 +132,12 @@ def test_the_gil_is_released_while_stepping():
             time.sleep(0.0005)
 
     t = threading.Thread(target=count)
-    sim.run(steps=2)
+    t0 = time.perf_counter()
+    sim.run(steps=50)
+    steps = max(100, int(50 * 0.1 / (time.perf_counter() - t0)))  # one run() of about 0.1 s
     t.start()
     start = time.perf_counter()
-    sim.run(steps=400)
+    sim.run(steps=steps)
     end = time.perf_counter()
     stop.set()
     t.join()
