@@ -31,16 +31,13 @@ def fascia_run_wall(exe, scene, steps, threads):
 
 
 def python_wall(fascia, scene, steps, controller=None):
-    sim = fascia.load(scene, output_dir="/tmp/fascia-bench-python")
-    if controller is not None:
-        import weakref
-        # a controller placed from Python into a loaded scene: load the tree, add it
-        root_tree = fascia._fascia.parse_file(scene)
+    if controller is None:
+        sim = fascia.load(scene, output_dir="/tmp/fascia-bench-python")
+    else:  # the XML scene's tree with a PythonController appended to the root, holding the object
+        root = fascia._fascia.parse_file(scene)
         oid = fascia._fascia.hand_over(controller)
-        tree = (root_tree[0], root_tree[1], root_tree[2], root_tree[3],
-                list(root_tree[4]) + [("PythonController", scene, 0, [("name", "ctl"), ("object", str(oid))], [])])
+        tree = root[:4] + (list(root[4]) + [("PythonController", scene, 0, [("name", "ctl"), ("object", str(oid))], [])],)
         sim = fascia.Simulation(None, output_dir="/tmp/fascia-bench-python", _tree=(tree, scene))
-        del weakref
     sim._core.start()
     t = time.perf_counter()
     sim.run(steps=steps)

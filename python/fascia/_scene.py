@@ -218,11 +218,8 @@ class Node(_Item):
 
     def add_child(self, name, **params):
         """A child node, with its parameters (dt, gravity ...)."""
-        n = Node.__new__(Node)
-        _Item.__init__(n, "Node", name, caller())
-        n._items = []
+        n = Node(name, **params)  # (located at the user's call: caller() skips the package's frames)
         n.parent = self
-        n._set(params, n.loc)
         self._items.append(n)
         return n
 

@@ -33,7 +33,7 @@ class State:
 
     def _assign(self, which, value):
         target = self._view(which)
-        a = np.asarray(value, dtype=np.float64) if np.isscalar(value) or isinstance(value, (list, tuple)) else np.asarray(value)
+        a = np.asarray(value)
         if a.dtype == object or not np.issubdtype(a.dtype, np.number):
             raise ParameterError(f"state '{self.name}'.{which}: expected numbers, got dtype {a.dtype}")
         if a.shape not in (target.shape, (3,), ()):

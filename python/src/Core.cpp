@@ -106,6 +106,7 @@ template <class F> void Core::stepping(F&& f) {
 }
 
 void Core::moveTools() {
+    if (m_h->moving.empty()) return;
     const double dt = m_h->sim->dt();
     for (auto& m : m_h->moving) {
         core::Pose p = m.tool->pose();
@@ -120,7 +121,7 @@ void Core::run(long steps) {
     stepping([&](core::Simulation& s) {
         s.start();
         for (long i = 0; i < steps; ++i) {
-            if (!m_h->moving.empty()) moveTools();
+            moveTools();
             s.step();
         }
     });
@@ -138,7 +139,7 @@ long Core::stepToward(double T, long steps) {
         if (done == 0 && s.time() == 0) s.checkEndTime(T);
         s.start();
         for (; done < steps && s.stepsUntil(T) > 0; ++done) {
-            if (!m_h->moving.empty()) moveTools();
+            moveTools();
             s.stepToward(T);
         }
     });

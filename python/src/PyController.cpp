@@ -45,7 +45,6 @@ void PyController::init() {
     auto hook = [&](const char* n) { return py::hasattr(m_object, n) ? m_object.attr(n) : py::object(); };
     m_begin = hook("on_step_begin");
     m_end = hook("on_step_end");
-    m_hasEnd = bool(m_end);
     if (!m_begin && !m_end && !py::hasattr(m_object, "on_init"))
         fail("the controller object (" + std::string(py::str(py::type::of(m_object).attr("__name__"))) +
              ") has none of on_init, on_step_begin, on_step_end");

@@ -22,7 +22,7 @@ public:
     void init() override;
     void beginStep(double t, double dt) override;
     void observe(double t, long step) override;
-    bool records(long step) const override { return step > 0 && m_hasEnd; }
+    bool records(long step) const override { return step > 0 && m_end; }
     /// Hands it the holder and the Python simulation (a weak reference), after the build.
     void attach(Holder* h, py::object simWeak);
     /// Calls on_init (from the build, with the GIL held).
@@ -37,7 +37,6 @@ private:
     /// Calls a hook (the GIL taken); an exception or a return value other than None fails the step.
     void call(const char* hook, const double* t);
     py::object m_object, m_begin, m_end, m_simWeak;
-    bool m_hasEnd = false;
     Holder* m_holder = nullptr;
 };
 
