@@ -8,13 +8,14 @@
 #   make sanitize  builds everything with ASan + UBSan into build-sanitize/ and runs the whole ctest
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-SCENE ?= scenes/heml/abdomen.xml
+# the default scene: a probe palpating an organ, 1.2 s in about a second; its picture and force plot land in build/output
+SCENE ?= scenes/interaction/palpation.xml
 # FASCIA_WITH_VTK=OFF builds without VTK (no .vtk/.vtu reader, no VTKExporter) and does not install it
 FASCIA_WITH_VTK ?= ON
 # FASCIA_WITH_PYTHON=OFF builds without the Python module (docs/python.md) and does not install its packages
 FASCIA_WITH_PYTHON ?= ON
 PYTHON_PACKAGES := python3-dev pybind11-dev python3-numpy python3-pytest python3-distributed python3-pandas python3-meshio python3-tqdm python3-matplotlib
-DEBIAN_PACKAGES := build-essential cmake pkgconf libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev) $(if $(filter ON,$(FASCIA_WITH_PYTHON)),$(PYTHON_PACKAGES)) $(EXTRA_PACKAGES)
+DEBIAN_PACKAGES := build-essential cmake pkgconf libeigen3-dev libtinyxml2-dev catch2 $(if $(filter ON,$(FASCIA_WITH_VTK)),libvtk9-dev xvfb) $(if $(filter ON,$(FASCIA_WITH_PYTHON)),$(PYTHON_PACKAGES)) $(EXTRA_PACKAGES)
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TIMEOUT ?= 30
@@ -42,7 +43,10 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 run: build
-	$(BUILD_DIR)/bin/fascia-run $(SCENE) --output $(BUILD_DIR)/output
+	$(BUILD_DIR)/bin/fascia-run $(SCENE) --output $(BUILD_DIR)/output $(if $(filter ON,$(FASCIA_WITH_VTK)),--snapshot $(basename $(notdir $(SCENE))).png)
+	@if [ -x $(BUILD_DIR)/bin/fascia-plot ] && [ -f $(BUILD_DIR)/output/probe.csv ]; then \
+	  $(BUILD_DIR)/bin/fascia-plot $(BUILD_DIR)/output/probe.csv --y probe_force_z,probe_force_x --title "the probe's push (z) and friction (x)" --output $(BUILD_DIR)/output/probe_force.png; fi
+	@echo "see it: $(BUILD_DIR)/bin/fascia-view $(SCENE) --play   (a window; keys and mouse: docs/viewer.md)"
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

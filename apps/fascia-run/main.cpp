@@ -2,6 +2,8 @@
 #include "fascia/base/CommandLine.h"
 #include "fascia/plugin/PluginManager.h"
 #include "fascia/plugin/Registry.h"
+#include "fascia/scene/Node.h"
+#include "fascia/scene/SceneLoader.h"
 #include "fascia/sim/Simulation.h"
 #include "fascia/sim/StepTeam.h"
 
@@ -17,6 +19,8 @@
 #include <cstring>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -49,6 +53,10 @@ options:
                    with another busy thread on the machine, start fascia-run pinned (taskset
                    -c 0) and give the workers the core it shares (docs/performance.md, lesson 18)
   --output DIR     folder exporters and monitors write into (created; default: .)
+  --snapshot FILE.png  a picture of the final state, relative to the output folder: the
+                   bodies' surfaces coloured by displacement, with the tools (a PngSnapshot
+                   added to the scene's root; plugin view, where the build has VTK). Without a
+                   display it renders under its own Xvfb (Debian's xvfb); with neither, exit 1
   --quiet          no progress bar
   --timers         time each component and print the table at the end (inclusive: an
                    integrator's time contains the force fields and constraints it calls)
@@ -156,7 +164,7 @@ void writeLastGood(Simulation& sim, const std::string& checkpoint) {
 
 /// The command line.
 struct Options {
-    std::string scene, output, describeName, checkpoint, restart;
+    std::string scene, output, describeName, checkpoint, restart, snapshot;
     long steps = -1, checkpointEvery = 0;
     double endTime = -1, dt = 0;
     int threads = 0;
@@ -190,6 +198,8 @@ Options parseArgs(int argc, char** argv) {
             }
         } else if (a == "--output") {
             o.output = cl.path("a folder");
+        } else if (a == "--snapshot") {
+            o.snapshot = cl.path("a .png file");
         } else if (a == "--quiet" || a == "-q") {
             o.quiet = true;
         } else if (a == "--timers") {
@@ -217,6 +227,55 @@ Options parseArgs(int argc, char** argv) {
     return o;
 }
 
+/// The scene with a PngSnapshot of the final state added to its root (--snapshot); its name is
+/// free in the root node ("snapshot", else "snapshot2" ...).
+std::unique_ptr<Simulation> withSnapshot(const Options& o, const LoadOptions& opts) {
+    ElementSpec spec = parseSceneFile(o.scene);
+    PluginManager::instance().loadDefaultPlugins();
+    if (!Registry::instance().find("PngSnapshot"))
+        throwInputError({}, "--snapshot needs the PngSnapshot component (plugin view), which this build does not have",
+                        {"build with VTK (FASCIA_WITH_VTK=ON, FASCIA_WITH_VIEWER=ON)"});
+    std::string name = "snapshot";
+    for (int k = 2;; ++k) {
+        bool taken = false;
+        for (auto& c : spec.children)
+            for (auto& [key, value] : c.attributes) taken |= key == "name" && value == name;
+        if (!taken) break;
+        name = "snapshot" + std::to_string(k);
+    }
+    spec.children.push_back({"PngSnapshot", {"fascia-run --snapshot", 0}, {{"name", name}, {"filename", o.snapshot}}, {}});
+    auto root = buildScene(spec);
+    root->context().sceneFile = o.scene;
+    auto sim = std::make_unique<Simulation>(std::move(root));
+    sim->configure(opts);
+    sim->init();
+    return sim;
+}
+
+/// The closing lines: every file the components claimed that exists, with the component that wrote
+/// it; a .pvd with the number of files of its series.
+void printOutputs(Simulation& sim, const Options& o) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    std::vector<std::string> lines;
+    for (auto& [path, who] : sim.root().context().outputs) {
+        if (!fs::exists(path, ec)) continue;
+        const std::string component = who.substr(0, who.find(" ("));
+        const Component* c = sim.find(component);
+        std::string line = "  " + path + "  (" + (c ? c->className() + " " + c->name() : component);
+        if (fs::path(path).extension() == ".pvd") {
+            std::ifstream in(path);
+            long n = 0;
+            for (std::string l; std::getline(in, l);) n += l.find("<DataSet") != std::string::npos;
+            line += ", a ParaView series of " + std::to_string(n) + " files";
+        }
+        lines.push_back(line + ")");
+    }
+    if (lines.empty()) return;
+    std::printf("fascia-run: outputs in %s:\n", (o.output.empty() ? std::string(".") : o.output).c_str());
+    for (auto& l : lines) std::printf("%s\n", l.c_str());
+}
+
 /// Loads the scene (and the --restart checkpoint) and works out the run: the end time T (0 for a
 /// run of a number of steps) and the number of steps, into o.steps. Writes nothing.
 std::unique_ptr<Simulation> loadScene(Options& o, double& T) {
@@ -224,7 +283,7 @@ std::unique_ptr<Simulation> loadScene(Options& o, double& T) {
     opts.outputDir = o.output;
     opts.dt = o.dt;
     if (!o.checkpoint.empty()) checkCheckpointFolder(o.checkpoint);
-    std::unique_ptr<Simulation> sim = Simulation::fromFile(o.scene, opts);
+    std::unique_ptr<Simulation> sim = o.snapshot.empty() ? Simulation::fromFile(o.scene, opts) : withSnapshot(o, opts);
     if (!o.restart.empty()) sim->restore(o.restart);
     if (!(sim->dt() > 0))
         throwInputError({o.scene, sim->root().loc().line}, "no time step: set dt on the root node or pass --dt");
@@ -292,6 +351,7 @@ int finishRun(Simulation& sim, const Options& o, const RunResult& r) {
     const double simulated = sim.time();
     std::printf("fascia-run: %ld steps, %.6g s simulated, %.3f s wall, %.4f ms/step, real-time factor %.3g\n", r.done,
                 simulated, r.wall, r.done ? 1e3 * r.wall / double(r.done) : 0.0, r.wall > 0 ? simulated / r.wall : 0.0);
+    printOutputs(sim, o);
     if (const long refused = fascia::core::workerPinFailures())
         std::fprintf(stderr, "fascia-run: warning: a worker could not be pinned to its core %ld times (sched_setaffinity "
                              "refused: a cpuset without the core?); the workers ran where the kernel put them\n", refused);

@@ -1,4 +1,5 @@
 #include "CapsuleTool.h"
+#include "ToolDisplay.h"
 
 #include <algorithm>
 
@@ -28,6 +29,11 @@ bool CapsuleTool::localBounds(double margin, Vec3& lo, Vec3& hi) const {
     const Vec3 tipEnd = m_length.get() * m_a;
     lo = Vec3::Zero().cwiseMin(tipEnd) - Vec3::Constant(r);
     hi = Vec3::Zero().cwiseMax(tipEnd) + Vec3::Constant(r);
+    return true;
+}
+
+bool CapsuleTool::displayMesh(double, Positions& points, Triangles& triangles) const {
+    capsuleMesh(m_radius.get(), m_length.get(), m_a, 16, 32, points, triangles);
     return true;
 }
 

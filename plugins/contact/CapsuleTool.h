@@ -13,6 +13,7 @@ public:
     double signedDistance(const Vec3& local, Vec3& normal) const override;
     bool localBounds(double margin, Vec3& lo, Vec3& hi) const override;
     double size() const override { return m_length.get() + 2 * m_radius.get(); }
+    bool displayMesh(double extent, Positions& points, Triangles& triangles) const override;
 
     core::Param<double> m_radius{this, core::ParamSpec("radius").unit("m").above(0).required().help("radius of the shaft and of its rounded tip")};
     core::Param<double> m_length{this, core::ParamSpec("length").unit("m").min(0).required().help("length of the shaft's axis, from the tip centre back along axis")};

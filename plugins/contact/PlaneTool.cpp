@@ -1,4 +1,5 @@
 #include "PlaneTool.h"
+#include "ToolDisplay.h"
 
 namespace fascia::contact {
 
@@ -12,6 +13,11 @@ void PlaneTool::init() {
 double PlaneTool::signedDistance(const Vec3& local, Vec3& normal) const {
     normal = m_n;
     return m_n.dot(local);
+}
+
+bool PlaneTool::displayMesh(double extent, Positions& points, Triangles& triangles) const {
+    squareMesh(m_n, extent, points, triangles);
+    return true;
 }
 
 } // namespace fascia::contact

@@ -12,6 +12,8 @@ public:
     double signedDistance(const Vec3& local, Vec3& normal) const override;
     bool localBounds(double, Vec3&, Vec3&) const override { return false; }
     double size() const override { return 0; }
+    /// A square of half-side extent about the pose's position.
+    bool displayMesh(double extent, Positions& points, Triangles& triangles) const override;
 
     core::Param<Vec3> m_normal{this, core::ParamSpec("normal").help("the plane's normal in the tool's frame, pointing to the body's side (normalised)"), Vec3(0, 0, 1)};
 

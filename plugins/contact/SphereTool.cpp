@@ -1,4 +1,5 @@
 #include "SphereTool.h"
+#include "ToolDisplay.h"
 
 namespace fascia::contact {
 
@@ -11,6 +12,11 @@ double SphereTool::signedDistance(const Vec3& local, Vec3& normal) const {
 bool SphereTool::localBounds(double margin, Vec3& lo, Vec3& hi) const {
     hi = Vec3::Constant(m_radius.get() + margin);
     lo = -hi;
+    return true;
+}
+
+bool SphereTool::displayMesh(double, Positions& points, Triangles& triangles) const {
+    capsuleMesh(m_radius.get(), 0.0, Vec3(0, 0, 1), 16, 32, points, triangles);
     return true;
 }
 

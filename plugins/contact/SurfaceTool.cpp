@@ -60,4 +60,11 @@ bool SurfaceTool::localBounds(double margin, Vec3& lo, Vec3& hi) const {
     return true;
 }
 
+bool SurfaceTool::displayMesh(double, Positions& points, Triangles& triangles) const {
+    if (!m_tree) return false;
+    points = m_tree->points();
+    triangles = m_tree->triangles();
+    return true;
+}
+
 } // namespace fascia::contact

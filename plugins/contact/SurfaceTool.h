@@ -24,6 +24,8 @@ public:
     bool localBounds(double margin, Vec3& lo, Vec3& hi) const override;
     double size() const override { return m_size; }
     bool memoizeDistance() const override { return true; }
+    /// The surface as read.
+    bool displayMesh(double extent, Positions& points, Triangles& triangles) const override;
 
     /// The surface as read (outwards), its tree and its grid (null before init).
     const TriangleTree* tree() const { return m_tree.get(); }

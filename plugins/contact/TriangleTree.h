@@ -53,6 +53,8 @@ public:
     const Vec3& lo() const { return m_lo; }
     const Vec3& hi() const { return m_hi; }
     size_t triangleCount() const { return m_tris.size(); }
+    const Positions& points() const { return m_p; }
+    const Triangles& triangles() const { return m_tris; }
     /// Memory held (bytes), for the documentation's figures.
     size_t bytes() const;
 

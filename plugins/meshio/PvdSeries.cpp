@@ -51,14 +51,26 @@ void removeStaleTemporaries(const std::string& pvdPath, const std::string& stem)
 void PvdSeries::reset(std::string pvdPath) {
     m_path = std::move(pvdPath);
     m_written.clear();
-    m_listed = 0;
+    m_files = m_listed = 0;
     m_lastWrite = 0;
 }
 
-void PvdSeries::add(double t, std::string file) {
-    m_written.emplace_back(t, std::move(file));
+void PvdSeries::restore(std::vector<PvdStep> steps) {
+    m_written = std::move(steps);
+    m_files = 0;
+    for (const PvdStep& s : m_written) m_files += s.parts.size();
+    m_listed = m_written.size();
+    m_lastWrite = 0;
+}
+
+void PvdSeries::add(double t, std::vector<std::string> parts) {
+    for (const std::string& f : parts)
+        if (f.empty() || f.find_first_of("/\n") != std::string::npos)
+            throw core::Error(core::ErrorKind::Internal, {}, "'" + f + "' is not a file name beside '" + m_path + "'");
+    m_files += parts.size();
+    m_written.push_back({t, std::move(parts)});
     const double now = core::timerNow();  // steady_clock, or the clock a test injects (setTimerClock)
-    if (m_written.size() <= 100 || now - m_lastWrite >= 1.0) {
+    if (m_files <= 100 || now - m_lastWrite >= 1.0) {
         write();
         m_lastWrite = now;
     }
@@ -72,7 +84,9 @@ void PvdSeries::write() {
     std::ostringstream s;
     s.precision(17);
     s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
-    for (auto& [t, f] : m_written) s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
+    for (const PvdStep& step : m_written)
+        for (size_t k = 0; k < step.parts.size(); ++k)
+            s << "    <DataSet timestep=\"" << step.t << "\" group=\"\" part=\"" << k << "\" file=\"" << step.parts[k] << "\"/>\n";
     s << "  </Collection>\n</VTKFile>\n";
     writeFileAtomically(m_path, s.str());
     m_listed = m_written.size();
@@ -80,31 +94,46 @@ void PvdSeries::write() {
 
 void PvdSeries::saveState(core::StateWriter& out, const std::string& prefix) const {
     std::vector<double> times;
-    std::string names;
-    for (const auto& [t, f] : m_written) times.push_back(t), names += f + "\n";
+    std::string lines;
+    for (const PvdStep& step : m_written) {
+        times.push_back(step.t);
+        for (size_t k = 0; k < step.parts.size(); ++k) lines += (k ? "/" : "") + step.parts[k];
+        lines += "\n";
+    }
     out.put(prefix + "times", times);
-    out.put(prefix + "files", names);
+    out.put(prefix + "files", lines);
 }
+
+namespace {
+/// A line of the checkpoint's files record: the parts of a timestep, separated by '/'.
+std::vector<std::string> splitParts(const std::string& line) {
+    std::vector<std::string> parts;
+    std::istringstream s(line);
+    for (std::string f; std::getline(s, f, '/');) parts.push_back(f);
+    return parts;
+}
+} // namespace
 
 void PvdSeries::restoreState(core::StateReader& in, const std::string& prefix, const core::Component& owner) {
     const std::vector<double> times = in.getDoubles(prefix + "times");
     const std::string names = in.getText(prefix + "files");
-    std::vector<std::pair<double, std::string>> written;
+    std::vector<PvdStep> steps;
     std::istringstream lines(names);
-    for (std::string f; std::getline(lines, f);) written.emplace_back(0.0, f);
-    if (written.size() != times.size())
-        in.fail("[" + owner.path() + "] the checkpoint lists " + std::to_string(written.size()) + " files and " +
+    for (std::string line; std::getline(lines, line);) steps.push_back({0.0, splitParts(line)});
+    if (steps.size() != times.size())
+        in.fail("[" + owner.path() + "] the checkpoint lists " + std::to_string(steps.size()) + " timesteps of files and " +
                 std::to_string(times.size()) + " times for '" + fs::path(m_path).filename().string() + "'");
-    for (size_t k = 0; k < times.size(); ++k) written[k].first = times[k];
-    restore(written);  // the .pvd is rewritten with the next file
+    for (size_t k = 0; k < times.size(); ++k) steps[k].t = times[k];
+    restore(steps);  // the .pvd is rewritten with the next file
     const fs::path dir = fs::path(m_path).parent_path();
     std::error_code ec;
-    for (const auto& [t, f] : written)
-        if (!fs::exists(dir / f, ec)) {
-            owner.warn("the series of the checkpoint has '" + f + "', which is not in the output folder '" + dir.string() +
-                       "': the .pvd will list it (restart into the output folder of the run that wrote the checkpoint)");
-            break;
-        }
+    for (const PvdStep& step : m_written)
+        for (const std::string& f : step.parts)
+            if (!fs::exists(dir / f, ec)) {
+                owner.warn("the series of the checkpoint has '" + f + "', which is not in the output folder '" + dir.string() +
+                           "': the .pvd will list it (restart into the output folder of the run that wrote the checkpoint)");
+                return;
+            }
 }
 
 } // namespace fascia::meshio

@@ -1,6 +1,6 @@
 #pragma once
 /// The .pvd index of a ParaView time series, shared by every series the exporters write (the
-/// VTKExporter's .vtu volume and .vtp surface, a visual surface's .vtp).
+/// VTKExporter's .vtu volume with its tools' .vtp, its .vtp surface, a visual surface's .vtp).
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -14,29 +14,36 @@ class StateReader;
 
 namespace fascia::meshio {
 
-/// Lists (time, file) pairs in a .pvd file. It is rewritten after every file while the series is
-/// short; past 100 files at most once a second of wall time (a full rewrite per file would grow
-/// quadratically; docs/performance.md, lesson 15), and always by finish(). The time is
-/// core::timerNow(): std::chrono::steady_clock unless a test injects a clock.
+/// One timestep of a series: its time and its files, part 0, 1 ... (the body's .vtu, then its
+/// tools' .vtp: ParaView shows the parts of a timestep together). The files are names beside the
+/// .pvd (no folder).
+struct PvdStep {
+    double t = 0;
+    std::vector<std::string> parts;
+};
+
+/// Lists the timesteps of a series in a .pvd file, a DataSet per part. It is rewritten after every
+/// file while the series is short; past 100 files at most once a second of wall time (a full
+/// rewrite per file would grow quadratically; docs/performance.md, lesson 15), and always by
+/// finish(). The time is core::timerNow(): std::chrono::steady_clock unless a test injects a clock.
 class PvdSeries {
 public:
     /// Starts an empty series indexed by `pvdPath`.
     void reset(std::string pvdPath);
-    /// Adds a file written for time t; `file` is relative to the .pvd's folder.
-    void add(double t, std::string file);
+    /// Adds the files written for time t, listed as its parts 0, 1 ... in this order (one file: the
+    /// timestep's only part); names beside the .pvd.
+    void add(double t, std::vector<std::string> parts);
     /// Rewrites the index when it lacks files (end of the run).
     void finish();
     size_t size() const { return m_written.size(); }
-    /// The files so far (time, file name), for a checkpoint; restore() puts them back after a restart,
-    /// the index on disk taken as listing them (it is rewritten with the next file).
-    const std::vector<std::pair<double, std::string>>& files() const { return m_written; }
-    void restore(std::vector<std::pair<double, std::string>> files) {
-        m_written = std::move(files);
-        m_listed = m_written.size();
-        m_lastWrite = 0;
-    }
+    /// The timesteps so far, for a checkpoint; restore() puts them back after a restart, the index on
+    /// disk taken as listing them (it is rewritten with the next file).
+    const std::vector<PvdStep>& steps() const { return m_written; }
+    void restore(std::vector<PvdStep> steps);
     const std::string& path() const { return m_path; }
-    /// The checkpoint of a series: files() as the records <prefix>times and <prefix>files.
+    /// The checkpoint of a series: steps() as the records <prefix>times (one per timestep) and
+    /// <prefix>files (a line per timestep, its parts separated by '/', which no file name holds: a
+    /// checkpoint written before parts existed reads as one part per timestep).
     void saveState(core::StateWriter& out, const std::string& prefix) const;
     /// Reads them back into restore(); errors name `owner`. A warning of `owner` when a file of the
     /// series is not beside the .pvd (the .pvd lists it all the same: restart into the output folder
@@ -46,8 +53,9 @@ public:
 private:
     void write();
     std::string m_path;
-    std::vector<std::pair<double, std::string>> m_written;
-    size_t m_listed = 0;          ///< files listed in the .pvd on disk
+    std::vector<PvdStep> m_written;
+    size_t m_files = 0;           ///< files in m_written, over all parts
+    size_t m_listed = 0;          ///< timesteps listed in the .pvd on disk
     double m_lastWrite = 0;       ///< core::timerNow() (s) at its last rewrite
 };
 

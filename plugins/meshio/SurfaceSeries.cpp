@@ -1,9 +1,11 @@
 #include "SurfaceSeries.h"
+#include "VTKXMLFile.h"
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -39,14 +41,11 @@ void SurfaceSeries::restoreState(core::StateReader& in, const std::string& prefi
     m_lastStep = in.getLong(prefix + "lastStep");
 }
 
-void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
-    m_lastStep = step;
-    const SeriesFile file = seriesFile(m_dir, m_base, step, ".vtp");
-    const fs::path& target = file.path;
-    std::error_code ec;
+namespace {
 
+/// The frame's points and triangles as poly data.
+void addSurface(vtkPolyData* poly, const SurfaceFrame& frame) {
     const Positions& p = *frame.points;
-    vtkNew<vtkPolyData> poly;
     vtkNew<vtkPoints> pts;
     pts->SetDataTypeToDouble();
     pts->SetNumberOfPoints(vtkIdType(p.size()));
@@ -58,39 +57,50 @@ void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
         polys->InsertNextCell(3, ids);
     }
     poly->SetPolys(polys);
+}
+
+/// The frame's point arrays, its "nodeId" and its field data.
+void addArrays(vtkPolyData* poly, const SurfaceFrame& frame) {
+    const size_t n = frame.points->size();
     for (const auto& a : frame.arrays) {
         vtkNew<vtkDoubleArray> arr;
         arr->SetName(a.name);
         arr->SetNumberOfComponents(3);
-        arr->SetNumberOfTuples(vtkIdType(p.size()));
-        for (size_t i = 0; i < p.size(); ++i) arr->SetTuple(vtkIdType(i), (*a.values)[i].data());
+        arr->SetNumberOfTuples(vtkIdType(n));
+        for (size_t i = 0; i < n; ++i) arr->SetTuple(vtkIdType(i), (*a.values)[i].data());
         poly->GetPointData()->AddArray(arr);
     }
     if (frame.nodeIds) {
         vtkNew<vtkIdTypeArray> ids;
         ids->SetName("nodeId");
-        ids->SetNumberOfTuples(vtkIdType(p.size()));
-        for (size_t i = 0; i < p.size(); ++i) ids->SetValue(vtkIdType(i), (*frame.nodeIds)[i]);
+        ids->SetNumberOfTuples(vtkIdType(n));
+        for (size_t i = 0; i < n; ++i) ids->SetValue(vtkIdType(i), (*frame.nodeIds)[i]);
         poly->GetPointData()->AddArray(ids);
     }
-
-    const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp");
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(tmp.string().c_str());
-    writer->SetInputData(poly);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    if (m_compression == "lz4") writer->SetCompressorTypeToLZ4();
-    else if (m_compression == "zlib") writer->SetCompressorTypeToZLib();
-    else writer->SetCompressorTypeToNone();
-    if (writer->Write() != 1) {
-        fs::remove(tmp, ec);
-        throw core::Error(core::ErrorKind::Output, m_owner->loc(), m_owner->className() + " '" + m_owner->name() + "': cannot write '" +
-                                                                          target.string() + "' (disk full, or no permission on the output folder?)");
+    for (const auto& f : frame.fields) {
+        vtkNew<vtkDoubleArray> arr;
+        arr->SetName(f.name);
+        arr->SetNumberOfComponents(3);
+        arr->InsertNextTuple(f.value.data());
+        poly->GetFieldData()->AddArray(arr);
     }
-    fs::rename(tmp, target, ec);
-    if (ec) throw core::Error(core::ErrorKind::Output, m_owner->loc(), "cannot rename '" + tmp.string() + "': " + ec.message());
-    m_pvd.add(t, file.name);
+}
+
+} // namespace
+
+void writeSurfaceFile(const core::Component& owner, const SurfaceFrame& frame, const fs::path& target, const std::string& compression) {
+    vtkNew<vtkPolyData> poly;
+    addSurface(poly, frame);
+    addArrays(poly, frame);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    if (const std::string e = writeXMLFileAtomically(*writer, poly, target, compression); !e.empty()) owner.failOutput(nullptr, e);
+}
+
+void SurfaceSeries::write(double t, long step, const SurfaceFrame& frame) {
+    m_lastStep = step;
+    const SeriesFile file = seriesFile(m_dir, m_base, step, ".vtp");
+    writeSurfaceFile(*m_owner, frame, file.path, m_compression);
+    m_pvd.add(t, {file.name});
 }
 
 } // namespace fascia::meshio

@@ -1,9 +1,11 @@
 #pragma once
-/// A ParaView time series of a triangle surface: <base>_<step>.vtp files and their own <base>.pvd.
+/// A ParaView time series of a triangle surface: <base>_<step>.vtp files and their own <base>.pvd,
+/// and the writing of one such .vtp file (writeSurfaceFile, which the VTKExporter's tools use too).
 /// Written with VTK's XML writer (this file's .cpp includes VTK; a build without VTK has none).
 #include "PvdSeries.h"
 #include "fascia/base/Component.h"
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,7 +21,18 @@ struct SurfaceFrame {
     };
     std::vector<Array> arrays;
     const IndexList* nodeIds = nullptr;  ///< optional integer point array "nodeId" (the body's node of each point)
+    /// Field data: arrays of one 3-component tuple for the whole surface (a tool's force).
+    struct Field {
+        const char* name;
+        Vec3 value;
+    };
+    std::vector<Field> fields;
 };
+
+/// Writes one frame as the .vtp file `target` (through a temporary file and a rename); compression
+/// "lz4", "zlib" or "none". A located output error of `owner` when it cannot.
+void writeSurfaceFile(const core::Component& owner, const SurfaceFrame& frame, const std::filesystem::path& target,
+                      const std::string& compression);
 
 class SurfaceSeries {
 public:

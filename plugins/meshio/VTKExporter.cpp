@@ -1,4 +1,5 @@
 #include "VTKExporter.h"
+#include "VTKXMLFile.h"
 #include "fascia/base/StateIO.h"
 #include "fascia/scene/Node.h"
 
@@ -42,24 +43,37 @@ void VTKExporter::init() {
     m_lastStep = -1;
     m_surfaceNodes.clear();
     m_surfaceTriangles.clear();
-    if (m_surface.get()) {
-        const auto* topo = m_st->node()->findInContext<core::BaseTopology>();
-        if (!topo || topo->meshData().points.size() != m_st->size() || topo->boundaryTriangles().empty())
-            fail(m_surface, "surface=\"true\" needs the body's boundary: a mesh source with volume elements and as many nodes "
-                            "as the state in the state's context (MeshLoader, GridMesh)");
-        // the boundary nodes in index order, and the triangles renumbered over them
-        const Triangles& b = topo->boundaryTriangles();
-        std::vector<int> local(m_st->size(), -1);
-        for (const auto& t : b)
-            for (int n : t) local[size_t(n)] = 0;
-        for (size_t i = 0; i < local.size(); ++i)
-            if (local[i] == 0) {
-                local[i] = int(m_surfaceNodes.size());
-                m_surfaceNodes.push_back(int(i));
-            }
-        for (const auto& t : b) m_surfaceTriangles.push_back({local[size_t(t[0])], local[size_t(t[1])], local[size_t(t[2])]});
-        m_surfaceSeries.start(*this, m_base + "_surface", m_compression.get());
-    }
+    if (m_surface.get()) initSurface();
+    m_toolOutput = ToolOutput();
+    if (m_tools.get())
+        m_toolOutput.start(*this, m_tools, *m_st, m_base, m_compression.get(),
+                           m_surface.get() ? std::vector<std::string>{m_base + "_surface"} : std::vector<std::string>{});
+}
+
+void VTKExporter::initSurface() {
+    const auto* topo = m_st->node()->findInContext<core::BaseTopology>();
+    if (!topo || topo->meshData().points.size() != m_st->size() || topo->boundaryTriangles().empty())
+        fail(m_surface, "surface=\"true\" needs the body's boundary: a mesh source with volume elements and as many nodes "
+                        "as the state in the state's context (MeshLoader, GridMesh)");
+    // the boundary nodes in index order, and the triangles renumbered over them
+    const Triangles& b = topo->boundaryTriangles();
+    std::vector<int> local(m_st->size(), -1);
+    for (const auto& t : b)
+        for (int n : t) local[size_t(n)] = 0;
+    for (size_t i = 0; i < local.size(); ++i)
+        if (local[i] == 0) {
+            local[i] = int(m_surfaceNodes.size());
+            m_surfaceNodes.push_back(int(i));
+        }
+    for (const auto& t : b) m_surfaceTriangles.push_back({local[size_t(t[0])], local[size_t(t[1])], local[size_t(t[2])]});
+    m_surfaceSeries.start(*this, m_base + "_surface", m_compression.get());
+}
+
+std::vector<core::Component*> VTKExporter::dependencies() const {
+    std::vector<core::Component*> out = BaseObserver::dependencies();
+    if (m_tools.get() && node())
+        for (core::BaseTool* t : node()->root()->findAllInSubtree<core::BaseTool>()) out.push_back(t);
+    return out;
 }
 
 void VTKExporter::writeSurface(double t, long step) {
@@ -222,26 +236,6 @@ void addCellData(vtkUnstructuredGrid* grid, const core::BaseMechanicalState& st,
     for (auto& a : arrays) grid->GetCellData()->AddArray(a);
 }
 
-/// Writes the grid to target under a temporary name, renamed when complete: "" or what failed.
-std::string writeGrid(vtkUnstructuredGrid* grid, const fs::path& target, const std::string& compression) {
-    std::error_code ec;
-    const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp");
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(tmp.string().c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    if (compression == "lz4") writer->SetCompressorTypeToLZ4();
-    else if (compression == "zlib") writer->SetCompressorTypeToZLib();
-    else writer->SetCompressorTypeToNone();
-    if (writer->Write() != 1) {
-        fs::remove(tmp, ec);
-        return "cannot write '" + target.string() + "' (disk full, or no permission on the output folder?)";
-    }
-    fs::rename(tmp, target, ec);
-    return ec ? "cannot rename '" + tmp.string() + "': " + ec.message() : "";
-}
-
 } // namespace
 
 void VTKExporter::writeStep(double t, long step) {
@@ -253,8 +247,11 @@ void VTKExporter::writeStep(double t, long step) {
     addPointData(grid, *m_st);
     if (cells.parts.size() > 1 && cells.count > 0) addForceFieldIndex(grid, cells);
     if (m_cellData.get() && cells.count > 0) addCellData(grid, *m_st, cells);
-    if (const std::string e = writeGrid(grid, file.path, m_compression.get()); !e.empty()) failOutput(&m_filename, e);
-    m_pvd.add(t, file.name);
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    if (const std::string e = writeXMLFileAtomically(*writer, grid, file.path, m_compression.get()); !e.empty()) failOutput(&m_filename, e);
+    std::vector<std::string> parts{file.name};
+    for (std::string& f : m_toolOutput.write(step)) parts.push_back(std::move(f));
+    m_pvd.add(t, std::move(parts));
     if (m_surfaceSeries.started()) writeSurface(t, step);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 #include "PvdSeries.h"
 #include "SurfaceSeries.h"
+#include "ToolOutput.h"
 #include "fascia/sim/Mechanics.h"
 
 #include <vector>
@@ -25,6 +26,13 @@ namespace fascia::meshio {
 /// state's node index). Off by default: the .vtu already holds the volume, whose surface ParaView
 /// extracts, and a second file per frame costs write time (docs/performance.md, lesson 15); scenes
 /// that render the surface elsewhere turn it on.
+/// With tools="true" (the default) each rigid tool touching the state (BaseTool whose body() is it,
+/// anywhere in the scene) is written at the same steps as <filename>_<tool's name>_<step>.vtp: its
+/// surface (BaseTool::displayMesh; a plane as a square of half-side 1.5 times the body's rest
+/// half-diagonal) at its pose in the world frame, with field data force (N) and torque (N m, about
+/// the pose's position), the tool's at that step. The .pvd lists these as parts 1, 2 ... of the
+/// timestep whose part 0 is the body's .vtu, so that ParaView opens one .pvd and shows the body and
+/// its instruments together. A tool without a shape to draw is left out.
 class VTKExporter : public core::BaseObserver {
 public:
     void init() override;
@@ -33,9 +41,13 @@ public:
     /// The final state of the run, when `every` skipped it.
     void observeFinal(double t, long step) override;
     void cleanup() override;
-    /// The files of the series so far (time and name, for the .pvd) and the step of the last one, for
-    /// the volume series and (surface="true") the surface series: a restored run lists the earlier
-    /// files in each .pvd (a warning when one is not in the output folder).
+    /// The default ones, and with tools="true" every tool of the scene: a tool knows its body once
+    /// initialised.
+    std::vector<core::Component*> dependencies() const override;
+    /// The files of the series so far (time and names, for the .pvd: the .vtu and its tools' .vtp)
+    /// and the step of the last one, for the volume series and (surface="true") the surface series:
+    /// a restored run lists the earlier files in each .pvd (a warning when one is not in the output
+    /// folder).
     void saveState(core::StateWriter& out) const override;
     void restoreState(core::StateReader& in) override;
 
@@ -46,9 +58,14 @@ public:
         "times slower to write) or none"), "lz4"};
     core::Param<bool> m_cellData{this, core::ParamSpec("cellData").help("write the force fields' per-element data (J, stresses)"), true};
     core::Param<bool> m_surface{this, core::ParamSpec("surface").help("also write the body's boundary surface as a .vtp series (<filename>_surface.pvd)"), false};
+    core::Param<bool> m_tools{this, core::ParamSpec("tools").help(
+        "also write each rigid tool touching the state as a .vtp surface at its pose, with its force and torque as field "
+        "data (<filename>_<tool>_<step>.vtp), listed in the .pvd as further parts of each timestep"), true};
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to write (default: the one in the context)")};
 
 private:
+    /// The boundary nodes and triangles of surface="true".
+    void initSurface();
     void writeStep(double t, long step);
     void writeSurface(double t, long step);
     core::BaseMechanicalState* m_st = nullptr;
@@ -61,6 +78,7 @@ private:
     IndexList m_surfaceNodes;
     Triangles m_surfaceTriangles;
     Positions m_surfacePoints, m_surfaceDisplacement, m_surfaceVelocity;
+    ToolOutput m_toolOutput;  ///< the tools (tools="true")
 };
 
 } // namespace fascia::meshio

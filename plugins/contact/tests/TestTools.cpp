@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 #include <sstream>
 
@@ -194,4 +195,43 @@ TEST_CASE("Every shape takes its pose from position and orientation, a load curv
     const auto keyed = run("keyTimes=\"0 0.002\" keyPositions=\"0 0 2  0 0 3\" keyOrientations=\"1 0 0 0  0 0 0 1\"", 1);
     CHECK(keyed.position.isApprox(Vec3(0, 0, 2.5), 1e-12));
     CHECK(std::abs(keyed.orientation.w() - h) < 1e-12);
+}
+
+TEST_CASE("Every shape's display mesh lies on its surface, is closed and faces outwards", "[PlaneTool][SphereTool][CapsuleTool][SurfaceTool]") {
+    struct Case { std::string shape; double volume; };  // volume: the shape's own (0: a plane, not closed)
+    const double r = 0.01, L = 0.05;
+    const Case c = GENERATE_COPY(Case{"PlaneTool normal=\"1 2 2\"", 0.0}, Case{"SphereTool radius=\"0.01\"", 4.0 / 3 * M_PI * r * r * r},
+                                 Case{"CapsuleTool radius=\"0.01\" length=\"0.05\" axis=\"1 1 0\"", 4.0 / 3 * M_PI * r * r * r + M_PI * r * r * L},
+                                 Case{"SurfaceTool mesh=\"" FASCIA_SOURCE_DIR "/scenes/meshes/probe.obj\" resolution=\"8\"", -1.0});
+    CAPTURE(c.shape);
+    auto sim = Simulation::fromString(
+        blockScene("<SemiImplicitEuler/>", "", "  <" + c.shape + " name=\"tool\" body=\"@block/state\" position=\"0 0 2\"/>\n", "dt=\"0.001\""),
+        "scene.xml");
+    auto& tool = dynamic_cast<fascia::contact::RigidTool&>(sim->tool("tool"));
+    fascia::Positions p;
+    fascia::Triangles t;
+    REQUIRE(tool.displayMesh(0.2, p, t));
+    REQUIRE(!t.empty());
+    const double size = std::max(tool.size(), 0.2);
+    std::map<std::pair<int, int>, int> edges;  // directed edge -> count
+    double volume = 0;
+    for (auto& tri : t) {
+        for (int k = 0; k < 3; ++k) ++edges[{tri[k], tri[(k + 1) % 3]}];
+        const Vec3 n = (p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]);
+        const Vec3 centroid = (p[tri[0]] + p[tri[1]] + p[tri[2]]) / 3;
+        Vec3 outward;
+        tool.signedDistance(centroid, outward);
+        CHECK(n.dot(outward) > 0);  // every triangle turned outwards
+        volume += p[tri[0]].dot(p[tri[1]].cross(p[tri[2]])) / 6;
+    }
+    for (auto& x : p) {
+        Vec3 n;
+        CHECK(std::abs(tool.signedDistance(x, n)) < 1e-9 * size);  // the vertices are on the surface
+    }
+    if (c.volume == 0) return;  // a plane's square has a border
+    for (auto& [e, count] : edges) {  // closed and consistently oriented: each edge once each way
+        CHECK(count == 1);
+        CHECK(edges.count({e.second, e.first}) == 1);
+    }
+    if (c.volume > 0) CHECK(std::abs(volume / c.volume - 1) < 0.03);  // the facets' volume, a little under the shape's
 }

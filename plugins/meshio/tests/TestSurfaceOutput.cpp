@@ -1,6 +1,7 @@
 // The body's boundary surface (Simulation::surface, VTKExporter surface="true") and the visual
 // surface mapping (BarycentricSurfaceMapping): through the API and in .vtp files read back by VTK.
 #include "BarycentricSurfaceMapping.h"
+#include "MeshioTestSupport.h"
 #include "fascia/sim/Simulation.h"
 #include "fascia/surface/TriangleSurface.h"
 
@@ -11,9 +12,6 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
-#include <vtkXMLDataElement.h>
-#include <vtkXMLDataParser.h>
-#include <vtkXMLPolyDataReader.h>
 
 #include <omp.h>
 
@@ -21,7 +19,6 @@
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <unistd.h>
 
 using fascia::Positions;
 using fascia::Triangles;
@@ -31,15 +28,13 @@ using fascia::core::Simulation;
 using fascia::meshio::BarycentricSurfaceMapping;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
+using meshiotest::fileNames;
+using meshiotest::freshDir;
+using meshiotest::pvdFiles;
+using meshiotest::readVtp;
+using meshiotest::slurp;
 
 namespace {
-
-fs::path freshDir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("fascia-surface-" + name + "-" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
 
 std::string errorOf(const std::string& xml, const std::string& baseDir = ".") {
     try {
@@ -60,31 +55,6 @@ std::string box(const std::string& element, const std::string& extra) {
 
 double tetVolume(const Positions& p, const std::array<int, 4>& t) {
     return (p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])) / 6;
-}
-
-/// The .pvd of a series parsed by VTK's XML parser: the file names it lists, in order.
-std::vector<std::string> pvdFiles(const fs::path& pvd) {
-    vtkNew<vtkXMLDataParser> parser;
-    parser->SetFileName(pvd.string().c_str());
-    REQUIRE(parser->Parse() == 1);
-    vtkXMLDataElement* root = parser->GetRootElement();
-    REQUIRE(root);
-    CHECK(std::string(root->GetName()) == "VTKFile");
-    CHECK(std::string(root->GetAttribute("type")) == "Collection");
-    vtkXMLDataElement* c = root->FindNestedElementWithName("Collection");
-    REQUIRE(c);
-    std::vector<std::string> files;
-    for (int i = 0; i < c->GetNumberOfNestedElements(); ++i) files.push_back(c->GetNestedElement(i)->GetAttribute("file"));
-    return files;
-}
-
-/// A .vtp file read by VTK's own reader (null on failure).
-vtkSmartPointer<vtkPolyData> readVtp(const fs::path& file) {
-    vtkNew<vtkXMLPolyDataReader> reader;
-    reader->SetFileName(file.string().c_str());
-    reader->Update();
-    if (reader->GetErrorCode() != 0) return nullptr;
-    return reader->GetOutput();
 }
 
 /// The six faces of the box [lo, hi], each split into m x m squares of two triangles, outwards,
@@ -450,15 +420,6 @@ TEST_CASE("The liver-size organ's finer visual surface is found in the mesh and 
     sim->finish();
 }
 
-namespace {
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-} // namespace
-
 TEST_CASE("A restored run continues the surface series like the volume one: the same .pvd files and file set",
           "[VTKExporter][BarycentricSurfaceMapping][Simulation]") {
     // a soft box sagging under gravity, held at xmin: the volume and surface series every 3 steps, the
@@ -491,12 +452,7 @@ TEST_CASE("A restored run continues the surface series like the volume one: the 
     second->finish();
     CHECK(pvdFiles(b / "out_surface.pvd").size() == 9);  // steps 0, 3 ... 24
     CHECK(pvdFiles(b / "skin.pvd").size() == 7);         // steps 0, 4 ... 24
-    std::vector<std::string> na, nb;
-    for (auto& e : fs::directory_iterator(a)) na.push_back(e.path().filename().string());
-    for (auto& e : fs::directory_iterator(b)) nb.push_back(e.path().filename().string());
-    std::sort(na.begin(), na.end());
-    std::sort(nb.begin(), nb.end());
-    CHECK(na == nb);
+    CHECK(fileNames(a) == fileNames(b));
     for (const std::string pvd : {"out.pvd", "out_surface.pvd", "skin.pvd"}) {
         CAPTURE(pvd);
         REQUIRE(fs::exists(b / pvd));

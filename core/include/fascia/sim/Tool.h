@@ -44,6 +44,10 @@ public:
     /// The mechanical state the tool touches (null before init). The simulation puts the tool into
     /// that state's group, wherever the tool sits in the scene graph.
     virtual BaseMechanicalState* body() const = 0;
+    /// A triangulation of the tool's surface in its own frame (outward triangles), for viewers and
+    /// exporters; contact never uses it. An unbounded tool (a plane) is drawn as a square of
+    /// half-side `extent` (m) about its origin. False when the tool has no shape to draw.
+    virtual bool displayMesh(double extent, Positions& points, Triangles& triangles) const { return false; }
     /// A tool holds no fixed set of nodes: its contacts change with the state.
     const IndexList& constrainedNodes() const override { return m_noNodes; }
 
