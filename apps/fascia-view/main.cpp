@@ -129,9 +129,11 @@ int screenshot(Options& o) {
     session.takeFrame(frame);
     renderer.show(frame);
     char text[160];
-    std::snprintf(text, sizeof text, "t = %.4f s   step %ld   %s %.4g to %.4g %s", frame.time, frame.step, fieldName(frame.field),
-                  renderer.rangeMin(), renderer.rangeMax(), fieldUnit(frame.field));
-    renderer.setStatus(frame.field == Field::None ? std::string(text).substr(0, std::string(text).find("   none")) : text);
+    int n = std::snprintf(text, sizeof text, "t = %.4f s   step %ld", frame.time, frame.step);
+    if (frame.field != Field::None)
+        std::snprintf(text + n, sizeof text - n, "   %s %.4g to %.4g %s", fieldName(frame.field), renderer.rangeMin(),
+                      renderer.rangeMax(), fieldUnit(frame.field));
+    renderer.setStatus(text);
     renderer.writePng(o.screenshot);
     session.simulation().finish();
     std::printf("fascia-view: wrote %s (t = %.6g s, %ld steps)\n", o.screenshot.c_str(), frame.time, frame.step);

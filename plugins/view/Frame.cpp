@@ -120,8 +120,8 @@ bool FrameSource::addBody(const core::Component& c, const core::Node& root) {
         for (auto* ff : actingOn<core::BaseForceField>(root, b.state))
             if (ff->tetrahedra() || ff->hexahedra()) b.elementFields.push_back(ff);
     }
+    b.name = c.path();
     m_bodies.push_back(std::move(b));
-    m_names.push_back(c.path());
     return true;
 }
 
@@ -175,7 +175,7 @@ void FrameSource::capture(Frame& out, double t, long step) const {
         const Body& b = m_bodies[k];
         BodyFrame& f = out.bodies[k];
         if (f.triangles.empty()) {
-            f.name = m_names[k];
+            f.name = b.name;
             f.triangles = b.triangles;
             f.stateNodes = b.nodes;
             f.constrained = b.constrained;

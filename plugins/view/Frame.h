@@ -78,6 +78,7 @@ public:
 
 private:
     struct Body {
+        std::string name;                   ///< the component's path
         core::BaseMechanicalState* state = nullptr;
         const Positions* points = nullptr;  ///< what moves: the state's x or a visual surface's points
         Positions rest;                     ///< the surface points at capture time zero
@@ -93,7 +94,6 @@ private:
     void nodeField(const Body& b, std::vector<double>& out) const;
     Field m_field;
     std::vector<Body> m_bodies;
-    std::vector<std::string> m_names;
     std::vector<core::BaseTool*> m_tools;
     std::vector<Positions> m_toolPoints;
     std::vector<Triangles> m_toolTriangles;
