@@ -45,7 +45,10 @@ build: configure
 run: build
 	$(BUILD_DIR)/bin/fascia-run $(SCENE) --output $(BUILD_DIR)/output $(if $(filter ON,$(FASCIA_WITH_VTK)),--snapshot $(basename $(notdir $(SCENE))).png)
 	@if [ -x $(BUILD_DIR)/bin/fascia-plot ] && [ -f $(BUILD_DIR)/output/probe.csv ]; then \
-	  $(BUILD_DIR)/bin/fascia-plot $(BUILD_DIR)/output/probe.csv --y probe_force_z,probe_force_x --title "the probe's push (z) and friction (x)" --output $(BUILD_DIR)/output/probe_force.png; fi
+	  $(BUILD_DIR)/bin/fascia-plot $(BUILD_DIR)/output/probe.csv --y probe_force_z,probe_force_x --title "the probe's push (z) and friction (x)" --output $(BUILD_DIR)/output/probe_force.png && \
+	  $(BUILD_DIR)/bin/fascia-plot $(BUILD_DIR)/output/probe.csv --x probe_z --scale-x -1000:mm --offset-x 65 --xlim -2,6 \
+	    --y probe_force_z --xlabel "depth of the probe's tip below the organ's top (mm)" --ylabel "push on the probe (N)" \
+	    --title "the probe's push against its depth (down, sliding at 5 mm, up)" --output $(BUILD_DIR)/output/probe_depth.png; fi
 	@echo "see it: $(BUILD_DIR)/bin/fascia-view $(SCENE) --play   (a window; keys and mouse: docs/viewer.md)"
 
 test: build

@@ -55,7 +55,8 @@ exit codes:
   1  a bad command line, or a picture that cannot be written
   2  an invalid scene or input (the located error on stderr), a --field that does not exist,
      a scene with no surface to show
-  3  the simulation failed before the picture (--screenshot)
+  3  the simulation failed: before the picture (--screenshot), or in the window (which shows the
+     message, paused, until it is closed)
   4  no display: a window needs one (run under xvfb-run -a), and a picture needs a display or
      Xvfb on PATH (Debian's xvfb)
 )";
@@ -150,8 +151,9 @@ int window(Options& o) {
     session.simulation().finish();
     std::printf("fascia-view: %ld steps, %.4f ms/step, %ld frames, %.2f ms a frame to render\n", s.steps,
                 s.steps ? 1e3 * s.stepWall / double(s.steps) : 0.0, viewer.frames(), viewer.meanFrameMs());
-    if (!s.error.empty()) std::printf("fascia-view: %s\n", s.error.c_str());
-    return 0;
+    if (s.error.empty()) return 0;
+    std::cerr << "fascia-view: " << s.error << "\n";  // (the window showed it, paused, until closed)
+    return 3;
 }
 
 } // namespace

@@ -1,4 +1,5 @@
 #include "fascia/scene/Node.h"
+#include "fascia/base/Error.h"
 #include "fascia/sim/StepTeam.h"
 
 #include <unistd.h>
@@ -56,6 +57,19 @@ Component* Node::findByName(const std::string& name) const {
     for (auto& ch : m_children)
         if (auto* c = ch->findByName(name)) return c;
     return nullptr;
+}
+
+Component* Node::findUnique(const std::string& nameOrPath) const {
+    if (nameOrPath.find('/') != std::string::npos) return resolveComponent(nameOrPath);
+    Component* found = nullptr;
+    int count = 0;
+    visit([&](const Node& n) {
+        if (Component* c = n.component(nameOrPath)) found = found ? found : c, ++count;
+    });
+    if (count > 1)
+        throwInputError({}, "the name '" + nameOrPath + "' is ambiguous: " + std::to_string(count) +
+                                " components have it; give a path such as '" + found->path() + "'");
+    return found;
 }
 
 namespace {

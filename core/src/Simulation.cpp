@@ -607,18 +607,7 @@ BaseTool& Simulation::tool(const std::string& nameOrPath) {
     return *t;
 }
 
-Component* Simulation::find(const std::string& nameOrPath) const {
-    if (nameOrPath.find('/') != std::string::npos) return m_root->resolveComponent(nameOrPath);
-    Component* found = nullptr;
-    int count = 0;
-    m_root->visit([&](const Node& n) {
-        if (Component* c = n.component(nameOrPath)) found = found ? found : c, ++count;
-    });
-    if (count > 1)
-        throwInputError({}, "the name '" + nameOrPath + "' is ambiguous: " + std::to_string(count) +
-                                " components have it; give a path such as '" + found->path() + "'");
-    return found;
-}
+Component* Simulation::find(const std::string& nameOrPath) const { return m_root->findUnique(nameOrPath); }
 
 std::vector<TimerRow> Simulation::timers() const {
     std::vector<TimerRow> rows;

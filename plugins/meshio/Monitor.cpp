@@ -22,6 +22,7 @@ void Monitor::init() {
     m_st = m_state.get() ? m_state.get() : node()->findInContext<core::BaseMechanicalState>();
     if (!m_st && m_tool.get()) m_st = m_tool->body();
     if (!m_st) fail("no MechanicalObject in its context: put one in the same node or link it with state=\"@...\"");
+    if (m_toolPosition.get() && !m_tool.get()) fail("toolPosition=\"true\" records a tool's position: give the tool too, e.g. tool=\"@probe\"");
     resolveNodes();
     resolveForceField();
     resolveCellFields();
@@ -122,6 +123,8 @@ std::string Monitor::headerRow() const {
     if (m_reactionOf.get())
         for (int a = 0; a < 3; ++a) h << ",reaction_" << axis[a] << " [N]";
     if (auto* tool = m_tool.get()) {
+        if (m_toolPosition.get())
+            for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_" << axis[a] << " [m]";
         for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_force_" << axis[a] << " [N]";
         for (int a = 0; a < 3; ++a) h << "," << tool->name() << "_torque_" << axis[a] << " [N m]";
     }
@@ -189,6 +192,10 @@ void Monitor::writeRow(double t, long step) {
     }
     if (auto* tool = m_tool.get()) {
         const Vec3 f = tool->force(), tq = tool->torque();
+        if (m_toolPosition.get()) {
+            const Vec3 p = tool->pose().position;
+            row << "," << p[0] << "," << p[1] << "," << p[2];
+        }
         row << "," << f[0] << "," << f[1] << "," << f[2] << "," << tq[0] << "," << tq[1] << "," << tq[2];
     }
     if (m_kineticEnergy.get()) {

@@ -19,7 +19,9 @@ namespace fascia::meshio {
 /// with the constrained components removed: 0 at a static equilibrium; one more force evaluation
 /// per row). A tool (`tool="@probe"`, fascia/sim/Tool.h) adds its force and torque, those of the
 /// step just computed: `probe_force_x [N]` ... `probe_torque_z [N m]`; the monitor then records the
-/// tool's body when no state is in its context. The final state of a run is recorded whatever `every`.
+/// tool's body when no state is in its context. With toolPosition, the tool's position at the row's
+/// time comes first: `probe_x [m]` ... (the force was computed one step earlier, at the pose before:
+/// a lag of one step's travel, e.g. 2 um for a probe at 20 mm/s and dt = 0.1 ms). The final state of a run is recorded whatever `every`.
 class Monitor : public core::BaseObserver {
 public:
     void init() override;
@@ -48,6 +50,7 @@ public:
     core::Param<bool> m_strainEnergy{this, core::ParamSpec("strainEnergy").help("record the strain energy of the element force fields acting on the state (J)"), false};
     core::Param<bool> m_residual{this, core::ParamSpec("residual").help("record the residual: the norm of the free (unconstrained) nodal forces at the recorded state (N), 0 at equilibrium"), false};
     core::Param<int> m_every{this, core::ParamSpec("every").min(1).help("record every N steps (the initial and the final state are always recorded)"), 1};
+    core::Param<bool> m_toolPosition{this, core::ParamSpec("toolPosition").help("with tool: record the tool's position too (probe_x [m] ...), e.g. to plot its force against its depth"), false};
     core::Link<core::BaseTool> m_tool{this, core::ParamSpec("tool").help("a rigid tool whose force and torque (the body's push on it) are recorded, e.g. \"@probe\"")};
     core::Link<core::BaseMechanicalState> m_state{this, core::ParamSpec("state").help("the state to record (default: the one in the context)")};
 

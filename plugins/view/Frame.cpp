@@ -46,21 +46,11 @@ std::vector<T*> actingOn(const core::Node& root, const core::BaseMechanicalState
     return out;
 }
 
-/// The component named (or at the path) `name` below root, null when none.
-const core::Component* findComponent(const core::Node& root, const std::string& name) {
-    if (name.find('/') != std::string::npos) return root.resolveComponent(name);
-    const core::Component* found = nullptr;
-    root.visit([&](const core::Node& n) {
-        if (const core::Component* c = n.component(name); c && !found) found = c;
-    });
-    return found;
-}
-
 } // namespace
 
 FrameSource::FrameSource(const core::Node& root, Field field, const std::string& surfaceName) : m_field(field) {
     if (!surfaceName.empty()) {
-        const core::Component* c = findComponent(root, surfaceName);
+        const core::Component* c = root.findUnique(surfaceName);
         if (!c || !addBody(*c, root))
             throwInputError({}, (c ? "'" + surfaceName + "' is a " + c->className() + ", not a surface to show" : "no component '" + surfaceName + "' in the scene"),
                             {"give a MechanicalObject whose mesh source has volume elements, or a visual surface (BarycentricSurfaceMapping)"});

@@ -295,6 +295,22 @@ def test_scale_factors_change_the_values_drawn_and_the_units():
     assert_differs(rgb, frame, (0, 1200), (-500, 3500), data["time"] * 1000, data["probe_force_z"], BLUE)
 
 
+def test_an_offset_turns_a_height_into_a_depth():
+    z = np.linspace(0.068, 0.060, 21)  # a probe going down 8 mm, pushing back linearly past 0.063
+    f = np.maximum(0.0, 0.063 - z) * 600
+    write_csv("press.csv", ["time [s]", "probe_z [m]", "probe_force_z [N]"], zip(np.linspace(0, 1, 21), z, f))
+    p = run_ok("press.csv", "--x", "probe_z", "--y", "probe_force_z", "--scale-x", "-1000:mm", "--offset-x", "65",
+               "--xlim", "-4,6", "--ylim", "-0.5,2", "--output", "depth.png", "--report", "--title", "")
+    report = json.loads(p.stdout)
+    assert report["x"] == {"column": "probe_z [m]", "scale": -1000.0, "offset": 65.0}
+    assert report["xlabel"] == "-probe_z [mm] + 65"
+    rgb = pixels("depth.png")
+    frame = frame_of(rgb, report)
+    depth = 65 - 1000 * z
+    assert_draws(rgb, frame, (-4, 6), (-0.5, 2), depth, f, BLUE, what="force against depth")
+    assert_differs(rgb, frame, (-4, 6), (-0.5, 2), depth - 1.5, f, BLUE)  # another offset
+
+
 def test_the_defaults_time_along_x_every_other_column_and_the_csv_name():
     x = np.linspace(0, 1, 11)
     write_csv("curve.csv", ["u0_z [m]", "time [s]", "u1_z [m]"], zip(-x, x, -2 * x))
@@ -372,6 +388,8 @@ BAD = [
      "fascia-plot: --scale-y needs a finite, non-zero factor with an optional unit (e.g. 1000:mm), not '0'"),
     ("scale_not_number", {"m.csv": GOOD}, ["m.csv", "--scale-x", "k:mm"], 1,
      "fascia-plot: --scale-x needs a finite, non-zero factor with an optional unit (e.g. 1000:mm), not 'k:mm'"),
+    ("offset_not_finite", {"m.csv": GOOD}, ["m.csv", "--offset-x", "inf"], 1,
+     "fascia-plot: --offset-x needs a finite number, not 'inf'"),
     ("limits_reversed", {"m.csv": GOOD}, ["m.csv", "--xlim", "2,1"], 1, "fascia-plot: --xlim needs MIN < MAX, not '2,1'"),
     ("limits_one_number", {"m.csv": GOOD}, ["m.csv", "--ylim", "3"], 1,
      "fascia-plot: --ylim needs MIN,MAX (either may be empty), not '3'"),

@@ -149,8 +149,9 @@ TEST_CASE("Tool force and torque columns of the Monitor are the tool's force and
     opt.outputDir = dir.string();
     auto sim = Simulation::fromString(
         blockScene("<SemiImplicitEuler damping=\"60\"/>", "    <FixedConstraint name=\"base\" group=\"zmin\"/>\n",
-                   "  <SphereTool name=\"ball\" body=\"@block/state\" radius=\"0.03\" position=\"0.05 0.05 0.079\"/>\n"
-                   "  <Monitor name=\"feel\" tool=\"@ball\" displacements=\"false\"/>\n"),
+                   "  <SphereTool name=\"ball\" body=\"@block/state\" radius=\"0.03\" keyTimes=\"0 1\" keyPositions=\"0.05 0.05 0.079  0.05 0.05 0.069\"/>\n"
+                   "  <Monitor name=\"feel\" tool=\"@ball\" displacements=\"false\"/>\n"
+                   "  <Monitor name=\"where\" tool=\"@ball\" toolPosition=\"true\" displacements=\"false\"/>\n"),
         "scene.xml", ".", opt);
     sim->run(5);
     sim->finish();
@@ -169,6 +170,25 @@ TEST_CASE("Tool force and torque columns of the Monitor are the tool's force and
         CHECK(v[1 + a] == Approx(ball.force()[a]).epsilon(1e-11).margin(1e-300));
         CHECK(v[4 + a] == Approx(ball.torque()[a]).epsilon(1e-11).margin(1e-15));
     }
+    // toolPosition: the pose at each row's time (keyframes: z = 0.079 - 0.01 t), before the force columns
+    std::ifstream where(dir / "where.csv");
+    std::getline(where, header);
+    CHECK(header == "time [s],ball_x [m],ball_y [m],ball_z [m],ball_force_x [N],ball_force_y [N],ball_force_z [N],"
+                    "ball_torque_x [N m],ball_torque_y [N m],ball_torque_z [N m]");
+    int rows = 0;
+    for (std::vector<double> w; std::getline(where, row); ++rows) {
+        std::istringstream ws(row);
+        w.clear();
+        for (std::string cell; std::getline(ws, cell, ',');) w.push_back(std::stod(cell));
+        REQUIRE(w.size() == 10);
+        CHECK(w[1] == Approx(0.05).epsilon(1e-12));
+        CHECK(w[3] == Approx(0.079 - 0.01 * w[0]).epsilon(1e-12));
+        if (rows == 5) {
+            CHECK(w[3] == Approx(ball.pose().position[2]).epsilon(1e-12));
+            CHECK(w[6] == Approx(ball.force()[2]).epsilon(1e-11));
+        }
+    }
+    CHECK(rows == 6);
     fs::remove_all(dir);
 }
 

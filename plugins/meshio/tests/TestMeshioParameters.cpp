@@ -568,6 +568,10 @@ TEST_CASE("Monitor, VTKExporter and BoxROI input errors are located", "[Monitor]
         CHECK_THAT(errorIn(elasticBar("<Monitor name=\"mon\" group=\"top\"/>"), dir),
                    Contains("scene.xml:9: error: Monitor 'mon': no node group 'top' in 'grid'"));
     }
+    SECTION("Monitor toolPosition without a tool") {
+        CHECK_THAT(errorIn(elasticBar("<Monitor name=\"mon\" indices=\"0\" toolPosition=\"true\"/>"), dir),
+                   Contains("scene.xml:9: error: Monitor 'mon': toolPosition=\"true\" records a tool's position: give the tool too"));
+    }
     SECTION("Monitor element out of range") {
         CHECK_THAT(errorIn(elasticBar("<Monitor name=\"mon\" indices=\"0\" elements=\"72\"/>"), dir),
                    Contains("scene.xml:9: error: Monitor 'mon': element index 72 is out of range: 'ff' has 72 elements"));

@@ -93,6 +93,15 @@ TEST_CASE("findByName finds the first match depth first", "[Node]") {
     CHECK(t.root.findByName("nothing") == nullptr);
 }
 
+TEST_CASE("findUnique takes a path or a name found once, and rejects an ambiguous name", "[Node]") {
+    Tree t;
+    CHECK(t.root.findUnique("s2") == t.s2);
+    CHECK(t.root.findUnique("d/x") == t.dx);
+    CHECK(t.d->findUnique("x") == t.dx);  // unique below d
+    CHECK(t.root.findUnique("nothing") == nullptr);
+    CHECK_THROWS_WITH(t.root.findUnique("x"), Catch::Contains("ambiguous: 2 components") && Catch::Contains("/root/a/b/x"));
+}
+
 TEST_CASE("resolveComponent follows relative, absolute and bare paths", "[Node]") {
     Tree t;
     struct Case { const char* from; const char* path; const char* expected; };

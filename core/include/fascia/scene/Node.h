@@ -84,6 +84,9 @@ public:
     }
     /// A component by name anywhere in the tree (first match, depth first).
     Component* findByName(const std::string& name) const;
+    /// A component by path ("a/b/mo", see resolveComponent) or by a name that must be unique in this
+    /// subtree: an ambiguous name is an InputError naming the first match's path; null when none.
+    Component* findUnique(const std::string& nameOrPath) const;
     /// Resolves a path relative to this node: "mo", "../loader", "child/mo", "/root/child/mo".
     /// A bare name not in this node is looked up in the ancestors. Returns null when nothing matches.
     Component* resolveComponent(const std::string& path) const;
