@@ -21,7 +21,8 @@ namespace fascia::meshio {
 /// step just computed: `probe_force_x [N]` ... `probe_torque_z [N m]`; the monitor then records the
 /// tool's body when no state is in its context. With toolPosition, the tool's position at the row's
 /// time comes first: `probe_x [m]` ... (the force was computed one step earlier, at the pose before:
-/// a lag of one step's travel, e.g. 2 um for a probe at 20 mm/s and dt = 0.1 ms). The final state of a run is recorded whatever `every`.
+/// a lag of one step's travel, e.g. 2 um for a probe at 20 mm/s and dt = 0.1 ms). The final
+/// state of a run is recorded whatever `every`.
 class Monitor : public core::BaseObserver {
 public:
     void init() override;
